@@ -1,0 +1,83 @@
+#ifndef scarp_grid_boundary_conditions_h
+#define scarp_grid_boundary_conditions_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace scarp
+{
+  namespace grid
+  {
+    using namespace dealii;
+
+    /// What a face of the background box does to the grid velocity.
+    enum class BoundaryType
+    {
+      free,     ///< nothing
+      fixed,    ///< all velocity components zero
+      slip,     ///< normal component zero (roller), tangential free
+      friction, ///< contact: no penetration, Coulomb friction, may separate
+    };
+
+    /**
+     * @brief Boundary conditions on the nodal velocities of the axis-aligned
+     * background box: one type per face, applied node by node after the grid
+     * update.
+     *
+     * Faces are numbered as deal.II's colorized hyper_rectangle: 2*d is the
+     * lower face in direction d, 2*d+1 the upper one.
+     */
+    template <int dim>
+    class BoundaryConditions
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /// Record which locally owned degrees of freedom lie on which faces.
+      void
+      setup(const DoFHandler<dim> &dof_handler);
+
+      /**
+       * Apply the conditions to the nodal velocity components @p velocity
+       * (one vector per direction, indexed by global dof). Returns the
+       * kinetic energy per unit nodal mass change summed with @p mass, i.e.
+       * the energy the boundary removed: sum_i m_i (|v_free|^2-|v|^2)/2.
+       */
+      template <typename VectorType>
+      double
+      apply(const VectorType &mass, std::array<VectorType *, dim> velocity)
+        const;
+
+      BoundaryType
+      type(const unsigned int face) const
+      {
+        return types[face];
+      }
+
+      static std::string
+      face_name(const unsigned int face);
+
+    private:
+      struct Node
+      {
+        types::global_dof_index dof;
+        unsigned int            faces; ///< bit f set: node lies on face f
+      };
+
+      std::array<BoundaryType, 2 * dim> types;
+      double                            friction_coefficient = 0.;
+      std::vector<Node>                 nodes;
+    };
+  } // namespace grid
+} // namespace scarp
+
+#endif

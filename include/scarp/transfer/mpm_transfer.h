@@ -1,0 +1,154 @@
+#ifndef scarp_transfer_mpm_transfer_h
+#define scarp_transfer_mpm_transfer_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <scarp/grid/background_grid.h>
+#include <scarp/materials/material.h>
+#include <scarp/particles/property_layout.h>
+#include <scarp/transfer/step_report.h>
+#include <scarp/transfer/transfer_parameters.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    using namespace dealii;
+
+    /// Damping of the grid forces (used to load gravity quasi-statically).
+    struct Damping
+    {
+      enum class Type
+      {
+        none,
+        viscous, ///< f -= c m v, c in 1/s
+        local,   ///< Cundall: f_k -= alpha |f_k| sign(v_k), alpha in [0,1)
+      };
+      Type   type        = Type::none;
+      double coefficient = 0;
+    };
+
+    /**
+     * @brief Points of damage materials gathered during a step, for the
+     * non-local average of the damage driver.
+     */
+    template <int dim>
+    struct DamagePoints
+    {
+      std::vector<Point<dim>>            position;
+      std::vector<double>                volume;
+      std::vector<double>                driver;
+      std::vector<bool>                  receiver;
+      std::vector<types::particle_index> id;
+      void
+      clear()
+      {
+        position.clear();
+        volume.clear();
+        driver.clear();
+        receiver.clear();
+        id.clear();
+      }
+    };
+
+    /**
+     * @brief The explicit MPM step on the background grid: particle to grid
+     * (mass, momentum, force), the grid solve with boundary conditions and
+     * hanging-node constraints, grid to particle (velocity, position,
+     * deformation) and the constitutive update, cell by cell.
+     */
+    template <int dim>
+    class MpmTransfer
+    {
+    public:
+      using Vector = LinearAlgebra::distributed::Vector<double>;
+
+      MpmTransfer(const grid::BackgroundGrid<dim>              &grid,
+                  Particles::ParticleHandler<dim>              &particles,
+                  const particles::PropertyLayout<dim>         &layout,
+                  const std::vector<const materials::Material *> &materials,
+                  const TransferParameters                     &parameters);
+
+      /// Size the grid vectors; call after every change of the mesh.
+      void
+      setup();
+
+      /// Nodal mass below which a node is treated as empty [kg].
+      void
+      set_mass_cutoff(const double cutoff)
+      {
+        mass_cutoff = cutoff;
+      }
+
+      /**
+       * One explicit step of length @p dt. Returns this rank's report (not
+       * yet reduced). If @p damage_points is given, points of damage
+       * materials are gathered into it in the order of the particle
+       * iteration, for the non-local step.
+       */
+      StepReport
+      step(const double            dt,
+           const Tensor<1, dim>   &gravity,
+           const Damping          &damping,
+           DamagePoints<dim>      *damage_points);
+
+      /// Measure the energies and momenta of the particles as they are.
+      StepReport
+      measure(const Tensor<1, dim> &gravity) const;
+
+      /// Nodal fields of the last step (for output).
+      const Vector &
+      nodal_mass() const
+      {
+        return mass;
+      }
+      const std::array<Vector, dim> &
+      nodal_velocity() const
+      {
+        return velocity_new;
+      }
+
+    private:
+      void
+      particles_to_grid(const double          dt,
+                        const Tensor<1, dim> &gravity,
+                        const bool            momentum_only);
+      double
+      solve_grid(const double dt, const Damping &damping, StepReport &report);
+      void
+      remap_momentum(StepReport &report);
+      void
+      grid_to_particles(const double dt,
+                        const bool   update_positions_and_velocities,
+                        const bool   update_stress,
+                        const std::array<Vector, dim> &stress_velocity,
+                        StepReport                    &report,
+                        DamagePoints<dim>             *damage_points,
+                        const Tensor<1, dim>          &gravity);
+      void
+      add_point_measures(const double     *p,
+                         const Point<dim> &x,
+                         const Tensor<1, dim> &gravity,
+                         StepReport           &report) const;
+
+      const grid::BackgroundGrid<dim>               &grid;
+      Particles::ParticleHandler<dim>               &particle_handler;
+      const particles::PropertyLayout<dim>          &layout;
+      std::vector<const materials::Material *>       materials;
+      const TransferParameters                      &parameters;
+      double                                         mass_cutoff = 0;
+      Tensor<1, dim>                                 last_gravity;
+
+      Vector                  mass;
+      std::array<Vector, dim> momentum, force, velocity_old, velocity_new,
+        velocity_remapped;
+    };
+  } // namespace transfer
+} // namespace scarp
+
+#endif

@@ -1,0 +1,68 @@
+#ifndef scarp_transfer_step_report_h
+#define scarp_transfer_step_report_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <string>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    using namespace dealii;
+
+    /**
+     * @brief What one explicit step measured: energies, momenta, the
+     * largest speed, and counts of points that went wrong. Filled per rank,
+     * then reduced over all ranks in one call.
+     */
+    struct StepReport
+    {
+      // Sums (reduced with MPI_SUM).
+      double kinetic_energy        = 0; ///< sum m |v|^2 / 2
+      double gravitational_energy  = 0; ///< -sum m g.x
+      double stored_energy         = 0; ///< sum V0 psi
+      double internal_work         = 0; ///< dt sum V sigma : D (this step)
+      double damping_dissipation   = 0; ///< energy removed by damping
+      double boundary_dissipation  = 0; ///< energy removed by the boundaries
+      double mass                  = 0;
+      double plastic_dissipation   = 0; ///< cumulative, from material states
+      double damage_dissipation    = 0; ///< cumulative, from material states
+      double damaged_volume        = 0; ///< sum V d
+      double n_points              = 0;
+      std::array<double, 3> momentum{{0, 0, 0}};
+      std::array<double, 3> angular_momentum{{0, 0, 0}};
+      // Maxima (reduced with MPI_MAX).
+      double max_speed  = 0;
+      double max_damage = 0;
+      // Failure counts (summed).
+      double n_not_finite  = 0; ///< NaN or inf in velocity, F or stress
+      double n_inverted    = 0; ///< J <= 0
+      double n_outside     = 0; ///< left the mesh
+      double n_too_fast    = 0; ///< moved more than a cell in one step
+      /// Position of one offending point (the first found on this rank).
+      std::array<double, 3> offender{{0, 0, 0}};
+      bool                  has_offender = false;
+
+      /// Sum/max over all ranks; the offender is taken from the lowest rank
+      /// that has one.
+      void
+      reduce(MPI_Comm communicator);
+
+      /// Total failures.
+      double
+      n_failures() const
+      {
+        return n_not_finite + n_inverted + n_outside + n_too_fast;
+      }
+
+      /// A sentence naming what went wrong (empty if nothing did).
+      std::string
+      failure_message() const;
+    };
+  } // namespace transfer
+} // namespace scarp
+
+#endif

@@ -1,0 +1,45 @@
+#ifndef scarp_transfer_transfer_parameters_h
+#define scarp_transfer_transfer_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    using namespace dealii;
+
+    /// How grid velocities return to the particles.
+    enum class VelocityTransfer
+    {
+      flip, ///< blend of FLIP (increment) and PIC (value) by FLIP fraction
+      apic, ///< affine particle-in-cell: carries the velocity gradient
+    };
+
+    /// When the stress is updated relative to the grid solve.
+    enum class UpdateScheme
+    {
+      usl,  ///< update stress last, with the grid velocity of the solve
+      musl, ///< modified USL: remap particle momentum first, then update
+    };
+
+    /**
+     * @brief Choices of the explicit MPM step: velocity transfer, update
+     * scheme and the small-mass cutoff of the grid solve.
+     */
+    struct TransferParameters
+    {
+      VelocityTransfer velocity_transfer = VelocityTransfer::flip;
+      double           flip_fraction     = 0.99;
+      UpdateScheme     scheme            = UpdateScheme::musl;
+      double           mass_cutoff       = 1e-5;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace transfer
+} // namespace scarp
+
+#endif

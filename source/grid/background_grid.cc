@@ -1,0 +1,149 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/grid/grid_generator.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/grid/background_grid.h>
+
+#include <cmath>
+
+namespace scarp
+{
+  namespace grid
+  {
+    template <int dim>
+    BackgroundGrid<dim>::BackgroundGrid(MPI_Comm communicator)
+      : communicator(communicator)
+      , tria(communicator,
+             Triangulation<dim>::maximum_smoothing,
+             parallel::distributed::Triangulation<dim>::default_setting)
+      , fe_q(1)
+      , dofs(tria)
+    {}
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      prm.declare_entry("Lower corner",
+                        dim == 2 ? "0, 0" : "0, 0, 0",
+                        *ParameterTools::double_list(dim),
+                        "Lower corner of the axis-aligned background box [m].");
+      prm.declare_entry("Upper corner",
+                        dim == 2 ? "1, 1" : "1, 1, 1",
+                        *ParameterTools::double_list(dim),
+                        "Upper corner of the axis-aligned background box [m]. "
+                        "Every side must be a whole number of cells.");
+      prm.declare_entry("Cell size",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Edge length of the square (cubic) coarse cells [m].");
+      BoundaryConditions<dim>::declare_parameters(prm);
+      prm.enter_subsection("Refinement");
+      prm.declare_entry("Adaptive refinement",
+                        "false",
+                        Patterns::Bool(),
+                        "Refine the mesh where the material damages (and "
+                        "coarsen it where damage has passed).");
+      prm.declare_entry("Maximum level",
+                        "1",
+                        Patterns::Integer(0, 6),
+                        "Refinement levels above the coarse cells.");
+      prm.declare_entry("Damage limit",
+                        "0.01",
+                        Patterns::Double(0., 1.),
+                        "Cells holding a point whose damage exceeds this (or "
+                        "next to such a cell) are refined.");
+      prm.declare_entry("Interval",
+                        "20",
+                        Patterns::Integer(1),
+                        "Steps between refinement passes.");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      const Point<dim> lower =
+        ParameterTools::get_point<dim>(prm, "Lower corner");
+      const Point<dim> upper =
+        ParameterTools::get_point<dim>(prm, "Upper corner");
+      cell_size = prm.get_double("Cell size");
+      if (!(cell_size > 0))
+        throw ScarpError("Mesh: <Cell size> must be positive.");
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          if (!(upper[d] > lower[d]))
+            throw ScarpError("Mesh: <Upper corner> must be above <Lower "
+                             "corner> in every direction (direction " +
+                             std::to_string(d) + ").");
+          const double n = (upper[d] - lower[d]) / cell_size;
+          if (std::abs(n - std::round(n)) > 1e-6 * n)
+            throw ScarpError("Mesh: the box side in direction " +
+                             std::to_string(d) + " (" +
+                             std::to_string(upper[d] - lower[d]) +
+                             " m) is not a whole number of cells of <Cell "
+                             "size> = " +
+                             std::to_string(cell_size) + " m.");
+        }
+      box = BoundingBox<dim>(std::make_pair(lower, upper));
+      boundary.parse_parameters(prm);
+      prm.enter_subsection("Refinement");
+      adaptive_refinement     = prm.get_bool("Adaptive refinement");
+      max_refinement_level    = prm.get_integer("Maximum level");
+      refinement_damage_limit = prm.get_double("Damage limit");
+      refinement_interval     = prm.get_integer("Interval");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::create_mesh()
+    {
+      std::vector<unsigned int> repetitions(dim);
+      for (unsigned int d = 0; d < dim; ++d)
+        repetitions[d] = static_cast<unsigned int>(
+          std::round(box.side_length(d) / cell_size));
+      GridGenerator::subdivided_hyper_rectangle(tria,
+                                                repetitions,
+                                                box.get_boundary_points().first,
+                                                box.get_boundary_points().second,
+                                                /*colorize=*/true);
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::setup_dofs()
+    {
+      dofs.distribute_dofs(fe_q);
+      owned_dofs = dofs.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(dofs, relevant_dofs);
+      hanging_node_constraints.clear();
+      hanging_node_constraints.reinit(relevant_dofs);
+      DoFTools::make_hanging_node_constraints(dofs, hanging_node_constraints);
+      hanging_node_constraints.close();
+      boundary.setup(dofs);
+    }
+
+
+    template <int dim>
+    double
+    BackgroundGrid<dim>::minimum_cell_size() const
+    {
+      return cell_size_on_level(tria.n_global_levels() - 1);
+    }
+
+    template class BackgroundGrid<2>;
+    template class BackgroundGrid<3>;
+  } // namespace grid
+} // namespace scarp

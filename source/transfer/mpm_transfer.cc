@@ -1,0 +1,580 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/vector.h>
+
+#include <scarp/transfer/mpm_transfer.h>
+#include <scarp/transfer/q1_shape.h>
+
+#include <cmath>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    namespace
+    {
+      /// The 3x3 embedding of a dim x dim tensor (plane strain: zz = 1).
+      template <int dim>
+      Tensor<2, 3>
+      embed(const Tensor<2, dim> &a, const double zz)
+      {
+        Tensor<2, 3> b;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            b[i][j] = a[i][j];
+        for (unsigned int i = dim; i < 3; ++i)
+          b[i][i] = zz;
+        return b;
+      }
+
+      template <int dim>
+      Tensor<1, dim>
+      stress_times(const SymmetricTensor<2, 3> &s, const Tensor<1, dim> &g)
+      {
+        Tensor<1, dim> r;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            r[i] += s[i][j] * g[j];
+        return r;
+      }
+
+      /// Scratch of one cell's constitutive update for one material.
+      template <int dim>
+      struct Batch
+      {
+        std::vector<Tensor<2, 3>>          delta_F, F;
+        std::vector<double *>              state;
+        std::vector<SymmetricTensor<2, 3>> stress;
+        std::vector<double>                stored_energy, driver;
+        std::vector<double *>              properties;
+        std::vector<Point<dim>>            position;
+        std::vector<types::particle_index> id;
+        void
+        clear()
+        {
+          delta_F.clear();
+          F.clear();
+          state.clear();
+          stress.clear();
+          properties.clear();
+          position.clear();
+          id.clear();
+        }
+      };
+    } // namespace
+
+
+    template <int dim>
+    MpmTransfer<dim>::MpmTransfer(
+      const grid::BackgroundGrid<dim>                &grid,
+      Particles::ParticleHandler<dim>                &particles,
+      const particles::PropertyLayout<dim>           &layout,
+      const std::vector<const materials::Material *> &materials,
+      const TransferParameters                       &parameters)
+      : grid(grid)
+      , particle_handler(particles)
+      , layout(layout)
+      , materials(materials)
+      , parameters(parameters)
+    {}
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::setup()
+    {
+      const MPI_Comm comm = grid.dof_handler().get_communicator();
+      mass.reinit(grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+      for (unsigned int d = 0; d < dim; ++d)
+        for (Vector *v : {&momentum[d],
+                          &force[d],
+                          &velocity_old[d],
+                          &velocity_new[d],
+                          &velocity_remapped[d]})
+          v->reinit(mass);
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::particles_to_grid(const double          dt,
+                                        const Tensor<1, dim> &gravity,
+                                        const bool            momentum_only)
+    {
+      (void)dt;
+      mass = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          momentum[d] = 0;
+          force[d]    = 0;
+        }
+      constexpr unsigned int n = Q1Shape<dim>::n;
+      dealii::Vector<double> local_mass(n);
+      std::array<dealii::Vector<double>, dim> local_momentum, local_force;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          local_momentum[d].reinit(n);
+          local_force[d].reinit(n);
+        }
+      std::vector<types::global_dof_index> dofs(n);
+      Q1Shape<dim>                         shape;
+      const bool apic = layout.has_affine;
+
+      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const auto particles = particle_handler.particles_in_cell(cell);
+          if (particles.begin() == particles.end())
+            continue;
+          const double     h  = cell->extent_in_direction(0);
+          const Point<dim> x0 = cell->vertex(0);
+          local_mass          = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              local_momentum[d] = 0;
+              local_force[d]    = 0;
+            }
+          for (const auto &particle : particles)
+            {
+              const double *p  = particle.get_properties().data();
+              const auto    xi = particle.get_reference_location();
+              shape.evaluate(xi, h);
+              const double m = p[layout.mass];
+              const Tensor<1, dim> v =
+                layout.get_vector(p, layout.velocity);
+              Tensor<2, dim> C;
+              if (apic)
+                C = layout.get_matrix(p, layout.affine);
+              const Point<dim> xp = x0 + h * xi;
+              if (momentum_only)
+                {
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      const double   w = shape.value[i] * m;
+                      Tensor<1, dim> vi = v;
+                      if (apic)
+                        vi += C * (cell->vertex(i) - xp);
+                      local_mass(i) += w;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        local_momentum[d](i) += w * vi[d];
+                    }
+                  continue;
+                }
+              const double J =
+                determinant(layout.get_matrix(p, layout.deformation_gradient));
+              const double volume = p[layout.reference_volume] * J;
+              const SymmetricTensor<2, 3> sigma =
+                layout.get_stress(p, layout.stress);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const double   w  = shape.value[i] * m;
+                  Tensor<1, dim> vi = v;
+                  if (apic)
+                    vi += C * (cell->vertex(i) - xp);
+                  const Tensor<1, dim> f =
+                    -volume * stress_times<dim>(sigma, shape.gradient[i]) +
+                    w * gravity;
+                  local_mass(i) += w;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      local_momentum[d](i) += w * vi[d];
+                      local_force[d](i) += f[d];
+                    }
+                }
+            }
+          cell->get_dof_indices(dofs);
+          const auto &constraints = grid.constraints();
+          constraints.distribute_local_to_global(local_mass, dofs, mass);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              constraints.distribute_local_to_global(local_momentum[d],
+                                                     dofs,
+                                                     momentum[d]);
+              if (!momentum_only)
+                constraints.distribute_local_to_global(local_force[d],
+                                                       dofs,
+                                                       force[d]);
+            }
+        }
+      mass.compress(VectorOperation::add);
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          momentum[d].compress(VectorOperation::add);
+          if (!momentum_only)
+            force[d].compress(VectorOperation::add);
+        }
+    }
+
+
+    template <int dim>
+    double
+    MpmTransfer<dim>::solve_grid(const double   dt,
+                                 const Damping &damping,
+                                 StepReport    &report)
+    {
+      const unsigned int n_owned = mass.locally_owned_size();
+      double             damping_work = 0;
+      for (unsigned int k = 0; k < n_owned; ++k)
+        {
+          const double m = mass.local_element(k);
+          if (!(m > mass_cutoff))
+            {
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  velocity_old[d].local_element(k) = 0;
+                  velocity_new[d].local_element(k) = 0;
+                }
+              continue;
+            }
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double v_old = momentum[d].local_element(k) / m;
+              double       f     = force[d].local_element(k);
+              double       f_damp = 0;
+              if (damping.type == Damping::Type::viscous)
+                f_damp = -damping.coefficient * m * v_old;
+              else if (damping.type == Damping::Type::local)
+                f_damp = -damping.coefficient * std::abs(f) *
+                         (v_old > 0 ? 1. : (v_old < 0 ? -1. : 0.));
+              f += f_damp;
+              const double v_new = v_old + dt * f / m;
+              damping_work += dt * f_damp * 0.5 * (v_old + v_new);
+              velocity_old[d].local_element(k) = v_old;
+              velocity_new[d].local_element(k) = v_new;
+            }
+        }
+      report.damping_dissipation -= damping_work;
+
+      std::array<Vector *, dim> old_ptr, new_ptr;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          old_ptr[d] = &velocity_old[d];
+          new_ptr[d] = &velocity_new[d];
+        }
+      grid.boundary_conditions().apply(mass, old_ptr);
+      report.boundary_dissipation +=
+        grid.boundary_conditions().apply(mass, new_ptr);
+
+      for (unsigned int d = 0; d < dim; ++d)
+        for (Vector *v : {&velocity_old[d], &velocity_new[d]})
+          {
+            grid.constraints().distribute(*v);
+            v->update_ghost_values();
+          }
+      mass.update_ghost_values();
+      return damping_work;
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::remap_momentum(StepReport &report)
+    {
+      particles_to_grid(0., Tensor<1, dim>(), /*momentum_only=*/true);
+      const unsigned int n_owned = mass.locally_owned_size();
+      for (unsigned int k = 0; k < n_owned; ++k)
+        {
+          const double m = mass.local_element(k);
+          for (unsigned int d = 0; d < dim; ++d)
+            velocity_remapped[d].local_element(k) =
+              (m > mass_cutoff) ? momentum[d].local_element(k) / m : 0.;
+        }
+      std::array<Vector *, dim> ptr;
+      for (unsigned int d = 0; d < dim; ++d)
+        ptr[d] = &velocity_remapped[d];
+      // The boundary acts on the remapped velocity too; what it removes was
+      // counted in the solve already.
+      (void)report;
+      grid.boundary_conditions().apply(mass, ptr);
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          grid.constraints().distribute(velocity_remapped[d]);
+          velocity_remapped[d].update_ghost_values();
+        }
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::add_point_measures(const double         *p,
+                                         const Point<dim>     &x,
+                                         const Tensor<1, dim> &gravity,
+                                         StepReport           &report) const
+    {
+      const double         m = p[layout.mass];
+      const Tensor<1, dim> v = layout.get_vector(p, layout.velocity);
+      report.kinetic_energy += 0.5 * m * v.norm_square();
+      report.gravitational_energy -= m * (gravity * x);
+      report.mass += m;
+      report.n_points += 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        report.momentum[d] += m * v[d];
+      if (dim == 2)
+        report.angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
+      else
+        {
+          const Tensor<1, 3> r({x[0], x[1], x[dim - 1]});
+          const Tensor<1, 3> u({v[0], v[1], v[dim - 1]});
+          const auto         l = cross_product_3d(r, u);
+          for (unsigned int d = 0; d < 3; ++d)
+            report.angular_momentum[d] += m * l[d];
+        }
+      report.max_speed = std::max(report.max_speed, v.norm());
+      const materials::Material &material =
+        *materials[static_cast<unsigned int>(p[layout.material_id])];
+      const double *state = p + layout.state;
+      const double  d     = material.damage(state);
+      report.max_damage   = std::max(report.max_damage, d);
+      const double V0     = p[layout.reference_volume];
+      report.damaged_volume += d * V0;
+      double plastic = 0, damage = 0;
+      material.dissipated_energy(state, plastic, damage);
+      report.plastic_dissipation += V0 * plastic;
+      report.damage_dissipation += V0 * damage;
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::grid_to_particles(
+      const double                   dt,
+      const bool                     update_positions_and_velocities,
+      const bool                     update_stress,
+      const std::array<Vector, dim> &stress_velocity,
+      StepReport                    &report,
+      DamagePoints<dim>             *damage_points,
+      const Tensor<1, dim>          &gravity)
+    {
+      constexpr unsigned int n = Q1Shape<dim>::n;
+      std::vector<types::global_dof_index> dofs(n);
+      Q1Shape<dim>                         shape;
+      const double alpha = parameters.flip_fraction;
+      const bool   apic  = layout.has_affine;
+      const BoundingBox<dim> &domain = grid.domain();
+      std::vector<Batch<dim>> batches(materials.size());
+      Tensor<1, dim>          v_new[n], v_old[n], v_stress[n];
+
+      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          auto particles = particle_handler.particles_in_cell(cell);
+          if (particles.begin() == particles.end())
+            continue;
+          const double     h  = cell->extent_in_direction(0);
+          const Point<dim> x0 = cell->vertex(0);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                v_new[i][d]    = velocity_new[d](dofs[i]);
+                v_old[i][d]    = velocity_old[d](dofs[i]);
+                v_stress[i][d] = stress_velocity[d](dofs[i]);
+              }
+          for (auto &b : batches)
+            b.clear();
+
+          for (auto &particle : particles)
+            {
+              double    *p  = particle.get_properties().data();
+              const auto xi = particle.get_reference_location();
+              shape.evaluate(xi, h);
+              if (update_positions_and_velocities)
+                {
+                  Tensor<1, dim> v_grid, dv;
+                  Tensor<2, dim> grad_v;
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      v_grid += shape.value[i] * v_new[i];
+                      dv += shape.value[i] * (v_new[i] - v_old[i]);
+                      grad_v += outer_product(v_new[i], shape.gradient[i]);
+                    }
+                  Tensor<1, dim> v;
+                  if (apic)
+                    {
+                      v = v_grid;
+                      layout.set_matrix(p, layout.affine, grad_v);
+                    }
+                  else
+                    v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
+                        (1. - alpha) * v_grid;
+                  layout.set_vector(p, layout.velocity, v);
+                  const Point<dim>     x_old = x0 + h * xi;
+                  const Tensor<1, dim> dx    = dt * v_grid;
+                  const Point<dim>     x_new = particle.get_location() + dx;
+                  particle.set_location(x_new);
+                  const bool finite = std::isfinite(v.norm_square()) &&
+                                      std::isfinite(x_new.norm_square());
+                  const bool outside = finite && !domain.point_inside(x_new);
+                  const bool too_fast = finite && dx.norm() > h;
+                  if (!finite)
+                    report.n_not_finite += 1;
+                  report.n_outside += outside;
+                  report.n_too_fast += too_fast;
+                  if ((!finite || outside || too_fast) && !report.has_offender)
+                    {
+                      report.has_offender = true;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        report.offender[d] = x_old[d];
+                    }
+                }
+              if (update_stress)
+                {
+                  Tensor<2, dim> L;
+                  for (unsigned int i = 0; i < n; ++i)
+                    L += outer_product(v_stress[i], shape.gradient[i]);
+                  Tensor<2, dim> dF = unit_symmetric_tensor<dim>() + dt * L;
+                  const Tensor<2, dim> F =
+                    dF * layout.get_matrix(p, layout.deformation_gradient);
+                  layout.set_matrix(p, layout.deformation_gradient, F);
+                  const double J = determinant(F);
+                  if (!(J > 0))
+                    {
+                      report.n_inverted += std::isfinite(J) ? 1 : 0;
+                      report.n_not_finite += std::isfinite(J) ? 0 : 1;
+                      if (!report.has_offender)
+                        {
+                          report.has_offender = true;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            report.offender[d] = particle.get_location()[d];
+                        }
+                    }
+                  // Stress power with the old stress; the new half is added
+                  // after the update (trapezoidal rule).
+                  const SymmetricTensor<2, 3> sigma =
+                    layout.get_stress(p, layout.stress);
+                  double power = 0;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      power += sigma[i][j] * 0.5 * (L[i][j] + L[j][i]);
+                  const double V = p[layout.reference_volume] * J;
+                  report.internal_work += 0.5 * dt * V * power;
+
+                  Batch<dim> &b = batches[static_cast<unsigned int>(
+                    p[layout.material_id])];
+                  b.delta_F.push_back(embed<dim>(dF, 1.));
+                  b.F.push_back(embed<dim>(F, 1.));
+                  b.state.push_back(p + layout.state);
+                  b.stress.push_back(sigma);
+                  b.properties.push_back(p);
+                  b.position.push_back(particle.get_location());
+                  b.id.push_back(particle.get_id());
+                }
+            }
+
+          if (!update_stress)
+            continue;
+          for (unsigned int mat = 0; mat < batches.size(); ++mat)
+            {
+              Batch<dim> &b = batches[mat];
+              if (b.F.empty())
+                continue;
+              const materials::Material &material = *materials[mat];
+              b.stored_energy.resize(b.F.size());
+              materials::MaterialBatch batch;
+              batch.n             = b.F.size();
+              batch.dt            = dt;
+              batch.delta_F       = b.delta_F.data();
+              batch.F             = b.F.data();
+              batch.state         = b.state.data();
+              batch.stress        = b.stress.data();
+              batch.stored_energy = b.stored_energy.data();
+              if (material.has_damage())
+                {
+                  b.driver.resize(b.F.size());
+                  batch.damage_driver = b.driver.data();
+                }
+              material.update(batch);
+              for (unsigned int k = 0; k < batch.n; ++k)
+                {
+                  double                      *p = b.properties[k];
+                  const SymmetricTensor<2, 3> &sigma = b.stress[k];
+                  layout.set_stress(p, layout.stress, sigma);
+                  const Tensor<2, 3> &dF = b.delta_F[k];
+                  double              power = 0;
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      power += sigma[i][j] * 0.5 * (dF[i][j] + dF[j][i] -
+                                                   2. * (i == j));
+                  const double J  = determinant(b.F[k]);
+                  const double V0 = p[layout.reference_volume];
+                  // power already holds dt * L (dF - I = dt L).
+                  report.internal_work += 0.5 * V0 * J * power;
+                  report.stored_energy += V0 * b.stored_energy[k];
+                  if (!std::isfinite(sigma.norm()))
+                    {
+                      report.n_not_finite += 1;
+                      if (!report.has_offender)
+                        {
+                          report.has_offender = true;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            report.offender[d] = b.position[k][d];
+                        }
+                    }
+                  add_point_measures(p, b.position[k], gravity, report);
+                  if (damage_points && material.has_damage())
+                    {
+                      const double *state = p + layout.state;
+                      damage_points->position.push_back(b.position[k]);
+                      damage_points->volume.push_back(V0 * J);
+                      damage_points->driver.push_back(b.driver[k]);
+                      damage_points->receiver.push_back(
+                        material.damage_can_change(state));
+                      damage_points->id.push_back(b.id[k]);
+                    }
+                }
+            }
+        }
+    }
+
+
+    template <int dim>
+    StepReport
+    MpmTransfer<dim>::step(const double          dt,
+                           const Tensor<1, dim> &gravity,
+                           const Damping        &damping,
+                           DamagePoints<dim>    *damage_points)
+    {
+      StepReport report;
+      last_gravity = gravity;
+      if (damage_points)
+        damage_points->clear();
+      particles_to_grid(dt, gravity, false);
+      solve_grid(dt, damping, report);
+      if (parameters.scheme == UpdateScheme::usl)
+        grid_to_particles(
+          dt, true, true, velocity_new, report, damage_points, gravity);
+      else
+        {
+          grid_to_particles(
+            dt, true, false, velocity_new, report, nullptr, gravity);
+          remap_momentum(report);
+          grid_to_particles(dt,
+                            false,
+                            true,
+                            velocity_remapped,
+                            report,
+                            damage_points,
+                            gravity);
+        }
+      return report;
+    }
+
+    template <int dim>
+    StepReport
+    MpmTransfer<dim>::measure(const Tensor<1, dim> &gravity) const
+    {
+      StepReport report;
+      for (const auto &particle : particle_handler)
+        {
+          const double *p = particle.get_properties().data();
+          add_point_measures(p, particle.get_location(), gravity, report);
+        }
+      return report;
+    }
+
+
+    template class MpmTransfer<2>;
+    template class MpmTransfer<3>;
+  } // namespace transfer
+} // namespace scarp

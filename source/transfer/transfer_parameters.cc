@@ -1,0 +1,55 @@
+#include <scarp/transfer/transfer_parameters.h>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    void
+    TransferParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Transfer");
+      prm.declare_entry("Velocity transfer",
+                        "FLIP",
+                        Patterns::Selection("PIC|FLIP|APIC"),
+                        "Grid-to-particle velocity transfer: PIC (the grid "
+                        "velocity; dissipative), FLIP (blend of the grid "
+                        "velocity increment and PIC, see FLIP fraction) or "
+                        "APIC (affine PIC: carries the velocity gradient; "
+                        "conserves angular momentum).");
+      prm.declare_entry("FLIP fraction",
+                        "0.99",
+                        Patterns::Double(0., 1.),
+                        "With FLIP: weight of the FLIP increment; the rest is "
+                        "PIC (1 = pure FLIP, 0 = PIC).");
+      prm.declare_entry("Update scheme",
+                        "MUSL",
+                        Patterns::Selection("USL|MUSL"),
+                        "USL: stress update with the grid velocity of the "
+                        "solve. MUSL: particle momentum is mapped to the grid "
+                        "again and the stress updated with that velocity "
+                        "(robust for tiny nodal masses).");
+      prm.declare_entry("Small mass cutoff",
+                        "1e-5",
+                        Patterns::Double(0., 1.),
+                        "Nodes whose mass is below this fraction of the mass "
+                        "of a full cell of the densest material get zero "
+                        "velocity.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    TransferParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Transfer");
+      const std::string transfer = prm.get("Velocity transfer");
+      velocity_transfer =
+        transfer == "APIC" ? VelocityTransfer::apic : VelocityTransfer::flip;
+      flip_fraction = transfer == "PIC" ? 0. : prm.get_double("FLIP fraction");
+      scheme        = prm.get("Update scheme") == "USL" ? UpdateScheme::usl :
+                                                          UpdateScheme::musl;
+      mass_cutoff   = prm.get_double("Small mass cutoff");
+      prm.leave_subsection();
+    }
+  } // namespace transfer
+} // namespace scarp
