@@ -1,0 +1,256 @@
+#ifndef scarp_nonlocal_nonlocal_averager_h
+#define scarp_nonlocal_nonlocal_averager_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/particles/property_pool.h>
+
+#include <scarp/nonlocal/weight_function.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace scarp
+{
+  namespace nonlocal
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Volume-weighted, renormalised non-local average of a scalar over
+     * material points on all MPI ranks:
+     * Ybar_p = sum_q w(|x_p - x_q|) V_q Y_q / sum_q w(|x_p - x_q|) V_q.
+     *
+     * Every rank passes its locally owned points. Sources closer than the
+     * cut-off radius to another rank's region are sent there (ghosts), so the
+     * answer does not depend on the number of ranks. Each receiver sums its
+     * neighbours in the order of their global ids, which makes the result
+     * bit-identical on any number of ranks.
+     *
+     * Neighbour lists (pairs closer than cut-off + skin) come from a uniform
+     * cell list and are reused between calls until a rebuild is needed; see
+     * compute() for the conditions. Weights are always evaluated from the
+     * current positions, and ghost positions, volumes and values are
+     * exchanged on every call.
+     *
+     * compute() is collective over the communicator unless the weight is
+     * WeightType::local, in which case it neither searches nor communicates.
+     */
+    template <int dim>
+    class NonlocalAverager
+    {
+    public:
+      /// The averager works on a duplicate of @p communicator, so its
+      /// messages never mix with anyone else's.
+      explicit NonlocalAverager(const MPI_Comm &communicator);
+
+      ~NonlocalAverager();
+
+      NonlocalAverager(const NonlocalAverager &) = delete;
+      NonlocalAverager &
+      operator=(const NonlocalAverager &) = delete;
+
+      /**
+       * Set the weight, its length scale l_c [m] and the skin distance as a
+       * fraction of the cut-off radius (NonlocalParameters::skin_fraction).
+       * Drops the neighbour lists. Must be called, with the same arguments,
+       * on all ranks before compute().
+       */
+      void
+      reinit(const WeightType weight_type,
+             const double     length_scale,
+             const double     skin_fraction);
+
+      /**
+       * Compute the averages of the locally owned points.
+       *
+       * @param local_boxes Boxes covering this rank's owned part of the mesh,
+       *   as from GridTools::compute_mesh_predicate_bounding_box() with
+       *   IteratorFilters::LocallyOwnedCell(). Points outside them are
+       *   allowed (their bounding box is added), but cost extra ghosts.
+       * @param positions Current position of each owned point.
+       * @param volumes Current volume of each point (> 0 for at least the
+       *   point itself, otherwise its average is its own value).
+       * @param values The local field Y of each point.
+       * @param is_receiver Whether a point needs its average (damage can still
+       *   change). Every point, receiver or not, is a source.
+       * @param ids Stable global id of each point, unique over all ranks.
+       * @param averages Output, resized to the number of points: Ybar for
+       *   receivers, Y itself for non-receivers.
+       *
+       * The neighbour lists are rebuilt, on all ranks together, if on any
+       * rank: there are no lists yet (first call, reinit(),
+       * invalidate_neighbour_lists()); the ids differ from those of the last
+       * build (other points, or the same in another order); @p local_boxes
+       * differ; a receiver was not a receiver at the last build; or a point
+       * has moved more than half the skin distance since the last build.
+       * Otherwise they are reused: every pair now closer than the cut-off
+       * was closer than cut-off + skin at the build, because neither point
+       * moved more than skin/2.
+       */
+      void
+      compute(const std::vector<BoundingBox<dim>>      &local_boxes,
+              const std::vector<Point<dim>>            &positions,
+              const std::vector<double>                &volumes,
+              const std::vector<double>                &values,
+              const std::vector<bool>                  &is_receiver,
+              const std::vector<types::particle_index> &ids,
+              std::vector<double>                      &averages);
+
+      /// Force a rebuild of the neighbour lists at the next compute(). Must
+      /// be called on all ranks alike.
+      void
+      invalidate_neighbour_lists();
+
+      const WeightFunction &
+      get_weight_function() const
+      {
+        return weight;
+      }
+
+      /// Cut-off radius of the weight [m].
+      double
+      cutoff_radius() const
+      {
+        return weight.cutoff_radius();
+      }
+
+      /// Skin distance [m]: lists hold pairs up to cutoff_radius() + skin.
+      double
+      skin_distance() const
+      {
+        return skin;
+      }
+
+      /// Number of compute() calls that rebuilt the neighbour lists.
+      unsigned int
+      n_rebuilds() const
+      {
+        return rebuild_count;
+      }
+
+      /// Number of compute() calls that reused the neighbour lists.
+      unsigned int
+      n_reuses() const
+      {
+        return reuse_count;
+      }
+
+      /// Number of compute() calls that communicated (all but the local
+      /// weight's calls, when there is more than one rank).
+      unsigned int
+      n_communicating_calls() const
+      {
+        return communicating_call_count;
+      }
+
+      /// Ghost sources received from other ranks at the last compute().
+      std::size_t
+      n_ghost_points() const
+      {
+        return ghost_ids.size();
+      }
+
+      /// Entries of the lists of the receivers of the last compute() (pairs
+      /// closer than cut-off + skin at the build, each point included once
+      /// as its own neighbour).
+      std::size_t
+      n_listed_pairs() const
+      {
+        return listed_pair_count;
+      }
+
+      /// Pairs of the last compute() with a non-zero weight (closer than
+      /// the cut-off now), self included.
+      std::size_t
+      n_interacting_pairs() const
+      {
+        return interacting_pair_count;
+      }
+
+    private:
+      /// Decide (collectively) whether the lists must be rebuilt.
+      bool
+      needs_rebuild(const std::vector<BoundingBox<dim>>      &local_boxes,
+                    const std::vector<Point<dim>>            &positions,
+                    const std::vector<bool>                  &is_receiver,
+                    const std::vector<types::particle_index> &ids) const;
+
+      /// Choose the sources to send to each rank, learn whom we receive
+      /// from, exchange ids and number all sources in the order of their ids.
+      void
+      setup_communication(const std::vector<BoundingBox<dim>>      &local_boxes,
+                          const std::vector<Point<dim>>            &positions,
+                          const std::vector<types::particle_index> &ids);
+
+      /// Send positions, volumes and values of the ghosts, and fill the
+      /// source arrays (local and ghost) in id order.
+      void
+      exchange_source_data(const std::vector<Point<dim>> &positions,
+                           const std::vector<double>     &volumes,
+                           const std::vector<double>     &values);
+
+      /// Build the neighbour lists of the receivers with a cell list.
+      void
+      build_neighbour_lists(const std::vector<bool> &is_receiver);
+
+      /// The weighted sums, with the weight @p w inlined.
+      template <typename Weight>
+      void
+      evaluate(const Weight              &w,
+               const std::vector<double> &values,
+               const std::vector<bool>   &is_receiver,
+               std::vector<double>       &averages);
+
+      MPI_Comm       communicator;
+      unsigned int   n_ranks;
+      unsigned int   my_rank;
+      WeightFunction weight;
+      double         skin        = 0.;
+      bool           initialized = false;
+      bool           lists_valid = false;
+
+      // The state of the last build, to decide on reuse.
+      std::vector<BoundingBox<dim>>      built_boxes;
+      std::vector<types::particle_index> built_ids;
+      std::vector<Point<dim>>            built_positions;
+      std::vector<bool>                  built_receivers;
+
+      // Communication pattern: the local indices sent to each destination,
+      // and the number of ghosts from each source rank (ascending ranks).
+      std::vector<unsigned int>              destinations;
+      std::vector<std::vector<unsigned int>> send_indices;
+      std::vector<unsigned int>              sources;
+      std::vector<unsigned int>              ghosts_per_source;
+      std::vector<types::particle_index>     ghost_ids;
+
+      // All sources (local, then ghosts) are numbered in the order of their
+      // ids ("slots"), so that a list sorted by slot sums in id order.
+      std::vector<unsigned int> slot_of_local;
+      std::vector<unsigned int> slot_of_ghost;
+      std::vector<Point<dim>>   source_positions;
+      std::vector<double>       source_volumes;
+      std::vector<double>       source_weighted_values;
+
+      // Neighbour lists in compressed rows, one row per local point (empty
+      // for points that were no receiver at the build).
+      std::vector<std::size_t>  row_start;
+      std::vector<unsigned int> neighbours;
+
+      // Communication buffers, kept to avoid reallocation.
+      std::vector<std::vector<double>> send_buffers;
+      std::vector<double>              receive_buffer;
+
+      unsigned int rebuild_count            = 0;
+      unsigned int reuse_count              = 0;
+      unsigned int communicating_call_count = 0;
+      std::size_t  listed_pair_count        = 0;
+      std::size_t  interacting_pair_count   = 0;
+    };
+  } // namespace nonlocal
+} // namespace scarp
+
+#endif
