@@ -124,7 +124,8 @@ namespace scarp
       /// Set a point to fully damaged (d = 1), e.g. a pre-existing crack.
       virtual void
       set_fully_damaged(double * /*state*/) const
-      {}
+      {
+      }
 
       /// Update the history (kappa) and damage of a point from the
       /// non-local driver @p nonlocal_driver over the step @p dt. Damage is
@@ -133,7 +134,8 @@ namespace scarp
       update_damage(const double /*nonlocal_driver*/,
                     const double /*dt*/,
                     double * /*state*/) const
-      {}
+      {
+      }
 
       /// Cumulative energy dissipated per reference volume [J/m^3] by
       /// plasticity and by damage at a point with this state.
@@ -150,7 +152,8 @@ namespace scarp
       /// elastic). Models without them ignore this.
       virtual void
       set_inelastic_enabled(const bool /*plasticity*/, const bool /*damage*/)
-      {}
+      {
+      }
     };
   } // namespace materials
 } // namespace scarp

@@ -1,0 +1,49 @@
+#ifndef scarp_materials_hencky_strain_h
+#define scarp_materials_hencky_strain_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <scarp/materials/spectral_decomposition.h>
+
+#include <cmath>
+
+namespace scarp
+{
+  namespace materials
+  {
+    /**
+     * Elastic predictor in logarithmic (Hencky) strain:
+     * b_e_trial = dF exp(2 eps_e_n) dF^T and eps_e_trial = 1/2 ln b_e_trial,
+     * returned in spectral form (principal logarithmic strains in
+     * descending order and their directions).
+     *
+     * Why this form: a rigid rotation dF = R gives b_e_trial = R b_e R^T,
+     * so the principal strains are unchanged and the directions rotate
+     * exactly; no objective stress rate is needed.
+     */
+    inline SpectralDecomposition
+    hencky_trial_strain(const Tensor<2, 3>          &delta_F,
+                        const SymmetricTensor<2, 3> &eps_e_n)
+    {
+      const SymmetricTensor<2, 3> b_n = exp_symmetric(2. * eps_e_n);
+      // dF b_n dF^T, symmetric by construction; build it symmetrically.
+      const Tensor<2, 3>    Fb = delta_F * Tensor<2, 3>(b_n);
+      SymmetricTensor<2, 3> b_trial;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          {
+            double v = 0.;
+            for (unsigned int k = 0; k < 3; ++k)
+              v += Fb[i][k] * delta_F[j][k];
+            b_trial[i][j] = v;
+          }
+      SpectralDecomposition s = spectral_decomposition(b_trial);
+      for (double &v : s.values)
+        v = 0.5 * std::log(v);
+      return s;
+    }
+  } // namespace materials
+} // namespace scarp
+
+#endif

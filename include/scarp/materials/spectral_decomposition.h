@@ -1,0 +1,132 @@
+#ifndef scarp_materials_spectral_decomposition_h
+#define scarp_materials_spectral_decomposition_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <cmath>
+
+namespace scarp
+{
+  namespace materials
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Eigenvalues (in descending order) and unit eigenvectors of a
+     * symmetric 3x3 tensor, A = sum_i values[i] vectors[i] (x) vectors[i].
+     *
+     * Logarithmic strain and the principal-space return mapping both work on
+     * this form; keeping it in a fixed-size struct keeps the hot path
+     * allocation-free.
+     */
+    struct SpectralDecomposition
+    {
+      /// Eigenvalues, values[0] >= values[1] >= values[2].
+      std::array<double, 3> values;
+      /// Orthonormal eigenvectors matching @p values.
+      std::array<Tensor<1, 3>, 3> vectors;
+    };
+
+    /// Spectral decomposition of a symmetric 3x3 tensor (deal.II's
+    /// eigenvectors() with the QL implicit shift method: accurate also for
+    /// repeated eigenvalues, which occur on every Mohr-Coulomb edge).
+    inline SpectralDecomposition
+    spectral_decomposition(const SymmetricTensor<2, 3> &A)
+    {
+      SpectralDecomposition result;
+      // An (almost) diagonal tensor is its own decomposition; this also
+      // keeps the stress-free state exactly stress-free.
+      const double off =
+        std::abs(A[0][1]) + std::abs(A[1][2]) + std::abs(A[0][2]);
+      if (off == 0.)
+        {
+          std::array<unsigned int, 3> order = {{0, 1, 2}};
+          // Sort the diagonal in descending order (3 elements).
+          if (A[order[0]][order[0]] < A[order[1]][order[1]])
+            std::swap(order[0], order[1]);
+          if (A[order[1]][order[1]] < A[order[2]][order[2]])
+            std::swap(order[1], order[2]);
+          if (A[order[0]][order[0]] < A[order[1]][order[1]])
+            std::swap(order[0], order[1]);
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              result.values[i]            = A[order[i]][order[i]];
+              result.vectors[i]           = Tensor<1, 3>();
+              result.vectors[i][order[i]] = 1.;
+            }
+          return result;
+        }
+      const auto eig = eigenvectors(A);
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          result.values[i]  = eig[i].first;
+          result.vectors[i] = eig[i].second;
+        }
+      return result;
+    }
+
+    /// The symmetric tensor sum_i values[i] vectors[i] (x) vectors[i].
+    inline SymmetricTensor<2, 3>
+    compose(const std::array<double, 3>       &values,
+            const std::array<Tensor<1, 3>, 3> &vectors)
+    {
+      SymmetricTensor<2, 3> A;
+      for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            A[i][j] += values[k] * vectors[k][i] * vectors[k][j];
+      return A;
+    }
+
+    /// Logarithm of a symmetric positive definite tensor.
+    inline SymmetricTensor<2, 3>
+    log_spd(const SymmetricTensor<2, 3> &A)
+    {
+      SpectralDecomposition s = spectral_decomposition(A);
+      for (double &v : s.values)
+        v = std::log(v);
+      return compose(s.values, s.vectors);
+    }
+
+    /// Exponential of a symmetric tensor (the result is SPD).
+    inline SymmetricTensor<2, 3>
+    exp_symmetric(const SymmetricTensor<2, 3> &A)
+    {
+      SpectralDecomposition s = spectral_decomposition(A);
+      for (double &v : s.values)
+        v = std::exp(v);
+      return compose(s.values, s.vectors);
+    }
+
+    /// Read a symmetric tensor stored as six doubles (xx, yy, zz, xy, yz,
+    /// xz), the layout used for tensors in the material state arrays.
+    inline SymmetricTensor<2, 3>
+    load_symmetric(const double *v)
+    {
+      SymmetricTensor<2, 3> A;
+      A[0][0] = v[0];
+      A[1][1] = v[1];
+      A[2][2] = v[2];
+      A[0][1] = v[3];
+      A[1][2] = v[4];
+      A[0][2] = v[5];
+      return A;
+    }
+
+    /// Store a symmetric tensor as six doubles (xx, yy, zz, xy, yz, xz).
+    inline void
+    store_symmetric(const SymmetricTensor<2, 3> &A, double *v)
+    {
+      v[0] = A[0][0];
+      v[1] = A[1][1];
+      v[2] = A[2][2];
+      v[3] = A[0][1];
+      v[4] = A[1][2];
+      v[5] = A[0][2];
+    }
+  } // namespace materials
+} // namespace scarp
+
+#endif

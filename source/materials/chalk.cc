@@ -1,0 +1,351 @@
+#include <deal.II/base/numbers.h>
+
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/hencky_strain.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace scarp
+{
+  namespace materials
+  {
+    namespace
+    {
+      /// Driver Y from principal effective Cauchy stresses.
+      inline double
+      driver_from_principal(const std::array<double, 3> &s,
+                            const double                 scale,
+                            const double                 friction)
+      {
+        const double I1 = s[0] + s[1] + s[2];
+        const double p  = I1 / 3.;
+        const double s2 = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
+                          (s[2] - p) * (s[2] - p);
+        // sqrt(3 J2) = sqrt(3/2 s:s).
+        return std::max(0., scale * (std::sqrt(1.5 * s2) + I1 * friction));
+      }
+    } // namespace
+
+
+    void
+    Chalk::DamageParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Damage angle",
+                        "60",
+                        Patterns::Double(0., 90.),
+                        "Damage (friction) angle theta of the driving stress "
+                        "Y = 3/(3 + tan theta) (sqrt(3 J2) + I1 tan theta / "
+                        "3) [deg], in [0, 90). Joss Bay chalk: 60.");
+      prm.declare_entry("Initiation stress",
+                        "20e3",
+                        Patterns::Double(0.),
+                        "Damage initiation stress sigma_f [Pa], > 0: damage "
+                        "starts when the history kappa exceeds it. Joss Bay "
+                        "chalk: 20e3.");
+      prm.declare_entry("Ductility",
+                        "5",
+                        Patterns::Double(1.),
+                        "Ductility eta [-], > 1: the energy dissipated per "
+                        "volume in uniaxial tension is eta sigma_f^2 / (2 E). "
+                        "Joss Bay chalk: 5.");
+      prm.declare_entry("Characteristic time",
+                        "1",
+                        Patterns::Double(0.),
+                        "Characteristic time tau of the delayed history "
+                        "kappa_dot = <Ybar - kappa> / tau [s], >= 0 (0: no "
+                        "delay). Joss Bay chalk: 1.");
+      prm.declare_entry("Length scale",
+                        "0.18",
+                        Patterns::Double(0.),
+                        "Length scale l_c of the non-local average [m], > 0 "
+                        "(standard deviation of the weight; bell support "
+                        "radius sqrt(7) l_c, Gaussian cut at 3 l_c). Joss "
+                        "Bay chalk: 0.18.");
+      prm.declare_entry("Nonlocal weight",
+                        "bell",
+                        Patterns::Selection("bell|gaussian|local"),
+                        "Weight of the non-local average of the damage "
+                        "driver: bell (1 - r^2/R^2)^2 with R = sqrt(7) l_c, "
+                        "gaussian exp(-r^2/(2 l_c^2)) cut at 3 l_c, or local "
+                        "(no average, mesh-dependent).");
+      prm.declare_entry("Residual tensile ratio",
+                        "1e-9",
+                        Patterns::Double(0., 1.),
+                        "Residual ratio r_t of the bulk stiffness in tension "
+                        "(mean stress > 0) at d = 1 [-], in [0, 1]. Joss Bay "
+                        "chalk: 1e-9.");
+      prm.declare_entry("Residual compressive ratio",
+                        "1e-2",
+                        Patterns::Double(0., 1.),
+                        "Residual ratio r_c of the bulk stiffness in "
+                        "compression at d = 1 [-], in [0, 1]. Joss Bay "
+                        "chalk: 1e-2.");
+      prm.declare_entry("Residual shear ratio",
+                        "5e-3",
+                        Patterns::Double(0., 1.),
+                        "Residual ratio r_g of the shear stiffness at d = 1 "
+                        "[-], in [0, 1]. Joss Bay chalk: 5e-3 or 1e-2 (the "
+                        "two runs of the paper).");
+    }
+
+
+    void
+    Chalk::DamageParameters::parse_parameters(ParameterHandler &prm)
+    {
+      damage_angle               = prm.get_double("Damage angle");
+      initiation_stress          = prm.get_double("Initiation stress");
+      ductility                  = prm.get_double("Ductility");
+      characteristic_time        = prm.get_double("Characteristic time");
+      length_scale               = prm.get_double("Length scale");
+      const std::string w        = prm.get("Nonlocal weight");
+      nonlocal_weight            = (w == "bell")       ? NonlocalWeight::bell
+                                   : (w == "gaussian") ? NonlocalWeight::gaussian
+                                                       : NonlocalWeight::local;
+      residual_tensile_ratio     = prm.get_double("Residual tensile ratio");
+      residual_compressive_ratio = prm.get_double("Residual compressive ratio");
+      residual_shear_ratio       = prm.get_double("Residual shear ratio");
+      check();
+    }
+
+
+    void
+    Chalk::DamageParameters::check() const
+    {
+      AssertThrow(damage_angle >= 0. && damage_angle < 90.,
+                  ExcMessage("Material: 'Damage angle' must lie in [0, 90) "
+                             "deg, got " +
+                             std::to_string(damage_angle) + "."));
+      AssertThrow(initiation_stress > 0.,
+                  ExcMessage("Material: 'Initiation stress' must be > 0 Pa."));
+      AssertThrow(ductility > 1.,
+                  ExcMessage("Material: 'Ductility' must be > 1 (the "
+                             "softening law needs eta - 1 > 0), got " +
+                             std::to_string(ductility) + "."));
+      AssertThrow(characteristic_time >= 0.,
+                  ExcMessage("Material: 'Characteristic time' must be >= 0 "
+                             "s."));
+      AssertThrow(length_scale > 0. || nonlocal_weight == NonlocalWeight::local,
+                  ExcMessage("Material: 'Length scale' must be > 0 m unless "
+                             "'Nonlocal weight' is local."));
+      for (const auto &[name, r] :
+           {std::make_pair("Residual tensile ratio", residual_tensile_ratio),
+            std::make_pair("Residual compressive ratio",
+                           residual_compressive_ratio),
+            std::make_pair("Residual shear ratio", residual_shear_ratio)})
+        AssertThrow(r >= 0. && r <= 1.,
+                    ExcMessage(std::string("Material: '") + name +
+                               "' must lie in [0, 1]."));
+    }
+
+
+    Chalk::Chalk(const double                         density,
+                 const IsotropicElasticity           &elasticity,
+                 const MohrCoulombReturn::Parameters &strength,
+                 const DamageParameters              &damage_parameters)
+      : rho(density)
+      , elasticity(elasticity)
+      , mohr_coulomb(elasticity, strength)
+      , parameters(damage_parameters)
+      , driver_scale(3. / (3. + std::tan(damage_parameters.damage_angle *
+                                         numbers::PI / 180.)))
+      , driver_friction(
+          std::tan(damage_parameters.damage_angle * numbers::PI / 180.) / 3.)
+    {
+      AssertThrow(density > 0.,
+                  ExcMessage("Material: 'Density' must be > 0 kg/m^3."));
+      parameters.check();
+    }
+
+
+    std::vector<std::string>
+    Chalk::state_variable_names() const
+    {
+      return {"elastic_strain_xx",
+              "elastic_strain_yy",
+              "elastic_strain_zz",
+              "elastic_strain_xy",
+              "elastic_strain_yz",
+              "elastic_strain_xz",
+              "plastic_strain",
+              "plastic_dissipation",
+              "damage",
+              "kappa",
+              "damage_dissipation",
+              "damage_driver"};
+    }
+
+
+    void
+    Chalk::initialize_state(const SymmetricTensor<2, 3> &initial_stress,
+                            double                      *state) const
+    {
+      store_symmetric(elasticity.strain(initial_stress), state);
+      for (unsigned int i = plastic_strain; i < n_state; ++i)
+        state[i] = 0.;
+    }
+
+
+    double
+    Chalk::nonlocal_length() const
+    {
+      return parameters.nonlocal_weight == NonlocalWeight::local
+               ? 0.
+               : parameters.length_scale;
+    }
+
+
+    bool
+    Chalk::damage_can_change(const double *state) const
+    {
+      return damage_enabled && state[damage_variable] < 1.;
+    }
+
+
+    void
+    Chalk::set_fully_damaged(double *state) const
+    {
+      state[damage_variable] = 1.;
+    }
+
+
+    double
+    Chalk::local_driver(const SymmetricTensor<2, 3> &effective_stress) const
+    {
+      const SymmetricTensor<2, 3> s  = deviator(effective_stress);
+      const double                I1 = trace(effective_stress);
+      return std::max(0.,
+                      driver_scale *
+                        (std::sqrt(1.5 * (s * s)) + I1 * driver_friction));
+    }
+
+
+    double
+    Chalk::damage_from_kappa(const double k) const
+    {
+      const double sf = parameters.initiation_stress;
+      if (k <= sf)
+        return 0.;
+      return 1. -
+             sf / k *
+               std::exp(-2. * (k - sf) / ((parameters.ductility - 1.) * sf));
+    }
+
+
+    SymmetricTensor<2, 3>
+    Chalk::degrade(const SymmetricTensor<2, 3> &effective_stress,
+                   const double                 d) const
+    {
+      const double p = trace(effective_stress) / 3.;
+      const double gp =
+        1. - (1. - (p > 0. ? parameters.residual_tensile_ratio
+                           : parameters.residual_compressive_ratio)) *
+               d;
+      const double gs = 1. - (1. - parameters.residual_shear_ratio) * d;
+      return gp * p * unit_symmetric_tensor<3>() +
+             gs * deviator(effective_stress);
+    }
+
+
+    void
+    Chalk::update(const MaterialBatch &batch) const
+    {
+      const double rg = parameters.residual_shear_ratio;
+      for (unsigned int q = 0; q < batch.n; ++q)
+        {
+          double *const         state = batch.state[q];
+          const double          d     = state[damage_variable];
+          SpectralDecomposition e =
+            hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
+          // Effective (undamaged) principal Kirchhoff stress.
+          std::array<double, 3> tau = elasticity.principal_stress(e.values);
+          std::array<double, 3> dep = {{0., 0., 0.}};
+          if (plasticity_enabled && mohr_coulomb.return_stress(tau) !=
+                                      MohrCoulombReturn::Region::elastic)
+            {
+              const std::array<double, 3> eps =
+                elasticity.principal_strain(tau);
+              double norm2 = 0.;
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  dep[i] = e.values[i] - eps[i];
+                  norm2 += dep[i] * dep[i];
+                  e.values[i] = eps[i];
+                }
+              state[plastic_strain] += std::sqrt(2. / 3. * norm2);
+            }
+          store_symmetric(compose(e.values, e.vectors), state + elastic_strain);
+
+          const double J = determinant(batch.F[q]);
+          // Driver from the undamaged Cauchy stress tau / J (after the
+          // plastic correction); fully damaged points contribute nothing.
+          const double Y =
+            (d >= 1.)
+              ? 0.
+              : driver_from_principal({{tau[0] / J, tau[1] / J, tau[2] / J}},
+                                      driver_scale,
+                                      driver_friction);
+          state[damage_driver] = Y;
+          if (batch.damage_driver != nullptr)
+            batch.damage_driver[q] = Y;
+
+          // Degradation with d_n and the tension/compression split.
+          const double p = (tau[0] + tau[1] + tau[2]) / 3.;
+          const double gp =
+            1. - (1. - (p > 0. ? parameters.residual_tensile_ratio
+                               : parameters.residual_compressive_ratio)) *
+                   d;
+          const double          gs = 1. - (1. - rg) * d;
+          std::array<double, 3> tau_d;
+          for (unsigned int i = 0; i < 3; ++i)
+            tau_d[i] = gp * p + gs * (tau[i] - p);
+          // Plastic dissipation with the stress that actually acts.
+          state[plastic_dissipation] +=
+            tau_d[0] * dep[0] + tau_d[1] * dep[1] + tau_d[2] * dep[2];
+          batch.stress[q] = compose(tau_d, e.vectors) / J;
+          if (batch.stored_energy != nullptr)
+            batch.stored_energy[q] =
+              0.5 * (tau_d[0] * e.values[0] + tau_d[1] * e.values[1] +
+                     tau_d[2] * e.values[2]);
+        }
+    }
+
+
+    void
+    Chalk::update_damage(const double nonlocal_driver,
+                         const double dt,
+                         double      *state) const
+    {
+      const double d_n = state[damage_variable];
+      if (!damage_enabled || d_n >= 1.)
+        return;
+      // Exact integration of kappa_dot = <Ybar - kappa>/tau over the step
+      // with Ybar constant: unconditionally stable, rate bounded by 1/tau.
+      const double tau    = parameters.characteristic_time;
+      const double factor = (tau > 0.) ? -std::expm1(-dt / tau) : 1.;
+      double      &k      = state[kappa];
+      k += factor * std::max(0., nonlocal_driver - k);
+
+      double d = std::max(d_n, damage_from_kappa(k));
+      if (d > 1. - 1e-6)
+        d = 1.;
+      if (d > d_n)
+        {
+          // Energy released: -dpsi/dd * (d - d_n) at the current elastic
+          // strain (an end-point rule; its error is O(strain increment)).
+          const SymmetricTensor<2, 3> eps =
+            load_symmetric(state + elastic_strain);
+          const double tr      = trace(eps);
+          const double psi_vol = 0.5 * elasticity.bulk_modulus() * tr * tr;
+          const SymmetricTensor<2, 3> e = deviator(eps);
+          const double psi_dev          = elasticity.shear_modulus() * (e * e);
+          const double r = (tr > 0.) ? parameters.residual_tensile_ratio
+                                     : parameters.residual_compressive_ratio;
+          state[damage_dissipation] +=
+            (d - d_n) * ((1. - r) * psi_vol +
+                         (1. - parameters.residual_shear_ratio) * psi_dev);
+          state[damage_variable] = d;
+        }
+    }
+  } // namespace materials
+} // namespace scarp
