@@ -521,6 +521,7 @@ namespace scarp
                       damage_points->receiver.push_back(
                         material.damage_can_change(state));
                       damage_points->id.push_back(b.id[k]);
+                      damage_points->properties.push_back(p);
                     }
                 }
             }

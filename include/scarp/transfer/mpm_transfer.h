@@ -45,9 +45,12 @@ namespace scarp
       std::vector<double>                driver;
       std::vector<bool>                  receiver;
       std::vector<types::particle_index> id;
+      /// Property arrays of the points (valid until particles are sorted).
+      std::vector<double *> properties;
       void
       clear()
       {
+        properties.clear();
         position.clear();
         volume.clear();
         driver.clear();

@@ -1,0 +1,211 @@
+#ifndef scarp_simulation_simulation_h
+#define scarp_simulation_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <scarp/grid/background_grid.h>
+#include <scarp/materials/material.h>
+#include <scarp/nonlocal/nonlocal_averager.h>
+#include <scarp/nonlocal/parameters.h>
+#include <scarp/particles/property_layout.h>
+#include <scarp/postprocess/json_writer.h>
+#include <scarp/postprocess/statistics_file.h>
+#include <scarp/postprocess/vtu_output.h>
+#include <scarp/scenes/cliff_profile.h>
+#include <scarp/scenes/shape.h>
+#include <scarp/simulation/scene_lists.h>
+#include <scarp/simulation/stage.h>
+#include <scarp/transfer/mpm_transfer.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    using namespace dealii;
+
+    /**
+     * @brief One scene run from a parameter file: the only place that knows
+     * the mesh, the particles, the materials, the stages and the outputs,
+     * and the time loop that joins them.
+     */
+    template <int dim>
+    class Simulation
+    {
+    public:
+      Simulation(MPI_Comm communicator, const SceneLists &lists);
+      ~Simulation();
+
+      /// Declare every entry of a scene with the named subsections.
+      static void
+      declare_parameters(ParameterHandler &prm, const SceneLists &lists);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /// Build the mesh and seed the bodies (no step yet).
+      void
+      setup();
+
+      /// Run all stages; writes outputs, statistics.csv and summary.json.
+      void
+      run();
+
+      /// Run only up to (simulated) time @p t, without outputs: for tests.
+      void
+      run_until(const double t);
+
+      /// Energies, momenta and counts of the particles now (reduced).
+      transfer::StepReport
+      measure() const;
+
+      const Particles::ParticleHandler<dim> &
+      particle_handler() const
+      {
+        return particles;
+      }
+      const particles::PropertyLayout<dim> &
+      property_layout() const
+      {
+        return layout;
+      }
+      const materials::Material &
+      material(const unsigned int i) const
+      {
+        return *materials[i];
+      }
+      double
+      time() const
+      {
+        return current_time;
+      }
+      unsigned int
+      step_number() const
+      {
+        return step;
+      }
+      double
+      time_step() const
+      {
+        return dt;
+      }
+      const grid::BackgroundGrid<dim> &
+      background_grid() const
+      {
+        return grid;
+      }
+      /// Cumulative energy bookkeeping.
+      double
+      energy_residual() const
+      {
+        return last_residual;
+      }
+      double
+      energy_scale() const
+      {
+        return scale_of_energy;
+      }
+
+    private:
+      struct Body
+      {
+        std::string                         name;
+        unsigned int                        material = 0;
+        unsigned int                        per_direction = 2;
+        std::unique_ptr<scenes::Shape<dim>> shape;
+        std::unique_ptr<scenes::CliffProfile> cliff;
+        std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
+        std::unique_ptr<Functions::ParsedFunction<dim>> stress;
+      };
+
+      void
+      seed_bodies();
+      double
+      stable_time_step() const;
+      void
+      advance(const Stage &stage);
+      void
+      nonlocal_damage_step(const Stage &stage);
+      void
+      check(const transfer::StepReport &report, const Stage &stage);
+      void
+      write_statistics(const transfer::StepReport &report,
+                       const Stage                &stage);
+      void
+      write_output();
+      void
+      write_summary(const std::string &how_it_ended);
+      void
+      print_progress(const transfer::StepReport &report,
+                     const Stage                &stage,
+                     const bool                  force);
+      void
+      refine_mesh();
+
+      MPI_Comm                   communicator;
+      SceneLists                 lists;
+      ConditionalOStream         pcout;
+      mutable TimerOutput        timer;
+      Timer                      wall_clock;
+
+      grid::BackgroundGrid<dim>       grid;
+      Particles::ParticleHandler<dim> particles;
+      particles::PropertyLayout<dim>  layout;
+      std::vector<std::unique_ptr<materials::Material>> materials;
+      std::vector<const materials::Material *>          material_pointers;
+      std::vector<Body>                                 bodies;
+      std::vector<std::unique_ptr<scenes::Shape<dim>>>  predamaged;
+      std::vector<Stage>                                stages;
+      transfer::TransferParameters                      transfer_parameters;
+      std::unique_ptr<transfer::MpmTransfer<dim>>       mpm;
+      std::unique_ptr<nonlocal::NonlocalAverager<dim>>  averager;
+      transfer::DamagePoints<dim>                       damage_points;
+      std::vector<double>                               nonlocal_driver;
+      bool                                              any_damage = false;
+      std::vector<BoundingBox<dim>>                     local_boxes;
+
+      Tensor<1, dim> gravity;
+      double         cfl               = 0.5;
+      double         max_time_step     = 1e30;
+      std::string    output_directory  = "output";
+      double         output_interval   = 0;
+      unsigned int   statistics_interval = 10;
+      bool           write_mesh_files  = true;
+      double         growth_tolerance  = 0.1;
+      bool           remove_outside    = false;
+      unsigned int   max_steps         = 100000000;
+
+      // State of the time loop.
+      double       current_time  = 0;
+      double       dt            = 0;
+      unsigned int step          = 0;
+      unsigned int output_index  = 0;
+      double       next_output   = 0;
+      bool         outputs_enabled = true;
+      double       initial_energy = 0;
+      double       internal_work  = 0;
+      double       damping_dissipation  = 0;
+      double       boundary_dissipation = 0;
+      double       scale_of_energy = 0;
+      double       last_residual   = 0;
+      double       n_removed       = 0;
+      unsigned int current_stage   = 0;
+      double       stage_peak_kinetic = 0;
+      double       settled_since   = -1;
+      double       last_progress_wall = -1e9;
+      double       first_damage_time  = -1;
+      transfer::StepReport last_report;
+      std::unique_ptr<postprocess::StatisticsFile> statistics;
+      std::unique_ptr<postprocess::VtuOutput<dim>> vtu;
+      postprocess::JsonObject                      stage_summaries;
+    };
+  } // namespace simulation
+} // namespace scarp
+
+#endif

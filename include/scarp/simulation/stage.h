@@ -1,0 +1,41 @@
+#ifndef scarp_simulation_stage_h
+#define scarp_simulation_stage_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <scarp/transfer/mpm_transfer.h>
+
+#include <string>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    using namespace dealii;
+
+    /**
+     * @brief A phase of a run with its own end criterion, damping and
+     * physics switches (for instance: load gravity elastically with damping
+     * until the kinetic energy has decayed, then let the cliff fail).
+     */
+    struct Stage
+    {
+      std::string        name;
+      double             end_time           = 1.;
+      bool               settle             = false;
+      double             kinetic_ratio      = 1e-4;
+      double             settle_time        = 0.;
+      transfer::Damping  damping;
+      bool               plasticity         = true;
+      bool               damage             = true;
+      bool               reset_displacement = false;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace simulation
+} // namespace scarp
+
+#endif

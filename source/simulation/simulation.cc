@@ -1,0 +1,920 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/filtered_iterator.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/material_factory.h>
+#include <scarp/particles/body_seeder.h>
+#include <scarp/scenes/shape_factory.h>
+#include <scarp/simulation/simulation.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    namespace
+    {
+      std::string
+      format_seconds(const double s)
+      {
+        const long         t = static_cast<long>(s + 0.5);
+        std::ostringstream o;
+        o << std::setfill('0') << std::setw(2) << t / 3600 << ":"
+          << std::setw(2) << (t / 60) % 60 << ":" << std::setw(2) << t % 60;
+        return o.str();
+      }
+    } // namespace
+
+
+    template <int dim>
+    Simulation<dim>::Simulation(MPI_Comm communicator, const SceneLists &lists)
+      : communicator(communicator)
+      , lists(lists)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+      , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+      , grid(communicator)
+    {}
+
+
+    template <int dim>
+    Simulation<dim>::~Simulation() = default;
+
+
+    template <int dim>
+    void
+    Simulation<dim>::declare_parameters(ParameterHandler &prm,
+                                        const SceneLists &lists)
+    {
+      SceneLists::declare_parameters(prm);
+      prm.declare_entry("Output directory",
+                        "output",
+                        Patterns::DirectoryName(),
+                        "Where the run writes its files (created if needed).");
+      grid::BackgroundGrid<dim>::declare_parameters(prm);
+
+      std::string material_names;
+      for (const auto &name : lists.materials)
+        {
+          material_names += (material_names.empty() ? "" : "|") + name;
+          prm.enter_subsection("Material " + name);
+          materials::MaterialFactory::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+      for (const auto &name : lists.bodies)
+        {
+          prm.enter_subsection("Body " + name);
+          prm.declare_entry("Material",
+                            lists.materials.front(),
+                            Patterns::Selection(material_names),
+                            "Name of the material of this body.");
+          prm.declare_entry("Particles per cell",
+                            "2",
+                            Patterns::Integer(1, 8),
+                            "Material points per cell and direction.");
+          prm.enter_subsection("Initial velocity");
+          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+          prm.leave_subsection();
+          prm.enter_subsection("Initial stress");
+          Functions::ParsedFunction<dim>::declare_parameters(prm, 6);
+          prm.leave_subsection();
+          scenes::ShapeFactory<dim>::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+      for (const auto &name : lists.regions)
+        {
+          prm.enter_subsection("Pre-damaged region " + name);
+          scenes::ShapeFactory<dim>::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Physics");
+      prm.declare_entry("Gravity",
+                        dim == 2 ? "0, -9.81" : "0, 0, -9.81",
+                        *ParameterTools::double_list(dim),
+                        "Gravitational acceleration [m/s^2].");
+      prm.leave_subsection();
+      prm.enter_subsection("Time");
+      prm.declare_entry("CFL number",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "dt = CFL h_min / (c_p + max |v|), c_p the largest "
+                        "p-wave speed of the materials. Stable up to about 1.");
+      prm.declare_entry("Maximum time step",
+                        "1e30",
+                        Patterns::Double(0.),
+                        "Upper bound on dt [s].");
+      prm.declare_entry("Maximum steps",
+                        "100000000",
+                        Patterns::Integer(1),
+                        "The run stops with an error after this many steps.");
+      prm.leave_subsection();
+      transfer::TransferParameters::declare_parameters(prm);
+      nonlocal::NonlocalParameters::declare_parameters(prm);
+      for (const auto &name : lists.stages)
+        {
+          prm.enter_subsection("Stage " + name);
+          Stage::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+      prm.enter_subsection("Output");
+      prm.declare_entry("Interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Simulated time between VTU outputs [s]; 0: only at "
+                        "the start and at the end of each stage.");
+      prm.declare_entry("Statistics interval",
+                        "10",
+                        Patterns::Integer(1),
+                        "Steps between rows of statistics.csv.");
+      prm.declare_entry("Write mesh",
+                        "true",
+                        Patterns::Bool(),
+                        "Write the background mesh with the particles.");
+      prm.leave_subsection();
+      prm.enter_subsection("Stability");
+      prm.declare_entry("Energy growth tolerance",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Stop when the energy balance (kinetic + "
+                        "gravitational + internal work + damping and boundary "
+                        "dissipation) has grown by more than this fraction of "
+                        "the largest energy of the run: the step is unstable.");
+      prm.declare_entry("Points leaving the mesh",
+                        "error",
+                        Patterns::Selection("error|remove"),
+                        "A material point that leaves the background box "
+                        "stops the run (error) or is removed and counted.");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      lists.parse_parameters(prm);
+      output_directory = prm.get("Output directory");
+      grid.parse_parameters(prm);
+
+      bool any_apic = false;
+      materials.clear();
+      for (const auto &name : lists.materials)
+        {
+          prm.enter_subsection("Material " + name);
+          try
+            {
+              materials.push_back(materials::MaterialFactory::create(prm));
+            }
+          catch (const std::exception &e)
+            {
+              throw ScarpError("Material " + name + ": " + e.what());
+            }
+          prm.leave_subsection();
+          material_pointers.push_back(materials.back().get());
+          if (materials.back()->has_damage())
+            any_damage = true;
+        }
+
+      bodies.clear();
+      for (const auto &name : lists.bodies)
+        {
+          prm.enter_subsection("Body " + name);
+          Body body;
+          body.name = name;
+          const std::string material = prm.get("Material");
+          body.material =
+            std::find(lists.materials.begin(), lists.materials.end(), material) -
+            lists.materials.begin();
+          body.per_direction = prm.get_integer("Particles per cell");
+          prm.enter_subsection("Initial velocity");
+          body.velocity = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+          body.velocity->parse_parameters(prm);
+          prm.leave_subsection();
+          prm.enter_subsection("Initial stress");
+          body.stress = std::make_unique<Functions::ParsedFunction<dim>>(6);
+          body.stress->parse_parameters(prm);
+          prm.leave_subsection();
+          try
+            {
+              if (prm.get("Shape") == "cliff")
+                {
+                  if constexpr (dim == 2)
+                    {
+                      body.cliff =
+                        scenes::ShapeFactory<dim>::create_cliff_profile(prm);
+                      body.cliff->set_cell_size(grid.coarse_cell_size());
+                    }
+                  else
+                    throw ScarpError("the cliff shape is two-dimensional.");
+                }
+              body.shape = scenes::ShapeFactory<dim>::create(prm);
+            }
+          catch (const std::exception &e)
+            {
+              throw ScarpError("Body " + name + ": " + e.what());
+            }
+          prm.leave_subsection();
+          bodies.push_back(std::move(body));
+        }
+      predamaged.clear();
+      for (const auto &name : lists.regions)
+        {
+          prm.enter_subsection("Pre-damaged region " + name);
+          try
+            {
+              predamaged.push_back(scenes::ShapeFactory<dim>::create(prm));
+            }
+          catch (const std::exception &e)
+            {
+              throw ScarpError("Pre-damaged region " + name + ": " + e.what());
+            }
+          prm.leave_subsection();
+        }
+
+      prm.enter_subsection("Physics");
+      gravity = ParameterTools::get_vector<dim>(prm, "Gravity");
+      prm.leave_subsection();
+      prm.enter_subsection("Time");
+      cfl           = prm.get_double("CFL number");
+      max_time_step = prm.get_double("Maximum time step");
+      max_steps     = prm.get_integer("Maximum steps");
+      prm.leave_subsection();
+      if (!(cfl > 0))
+        throw ScarpError("Time: <CFL number> must be positive.");
+      transfer_parameters.parse_parameters(prm);
+      any_apic = transfer_parameters.velocity_transfer ==
+                 transfer::VelocityTransfer::apic;
+      nonlocal::NonlocalParameters nonlocal_parameters;
+      nonlocal_parameters.parse_parameters(prm);
+
+      stages.clear();
+      double previous_end = 0;
+      for (const auto &name : lists.stages)
+        {
+          prm.enter_subsection("Stage " + name);
+          Stage stage;
+          stage.name = name;
+          stage.parse_parameters(prm);
+          prm.leave_subsection();
+          if (stage.end_time < previous_end)
+            throw ScarpError("Stage " + name + ": <End time> (" +
+                             std::to_string(stage.end_time) +
+                             ") lies before the end of the stage before it.");
+          previous_end = stage.end_time;
+          stages.push_back(stage);
+        }
+      prm.enter_subsection("Output");
+      output_interval     = prm.get_double("Interval");
+      statistics_interval = prm.get_integer("Statistics interval");
+      write_mesh_files    = prm.get_bool("Write mesh");
+      prm.leave_subsection();
+      prm.enter_subsection("Stability");
+      growth_tolerance = prm.get_double("Energy growth tolerance");
+      remove_outside   = prm.get("Points leaving the mesh") == "remove";
+      prm.leave_subsection();
+
+      // The particle layout holds only what this scene needs.
+      std::vector<std::string> state_names;
+      for (const auto &m : materials)
+        if (m->n_state_variables() > state_names.size())
+          state_names = m->state_variable_names();
+      layout.build(any_apic, state_names);
+
+      if (any_damage)
+        {
+          double                 length = -1;
+          nonlocal::WeightType   weight = nonlocal::WeightType::bell;
+          for (const auto &m : materials)
+            if (m->has_damage())
+              {
+                const auto *chalk =
+                  dynamic_cast<const materials::Chalk *>(m.get());
+                nonlocal::WeightType w = nonlocal::WeightType::bell;
+                if (chalk)
+                  w = chalk->nonlocal_weight() ==
+                          materials::NonlocalWeight::gaussian ?
+                        nonlocal::WeightType::gaussian :
+                      chalk->nonlocal_weight() ==
+                          materials::NonlocalWeight::local ?
+                        nonlocal::WeightType::local :
+                        nonlocal::WeightType::bell;
+                if (length >= 0 &&
+                    (length != m->nonlocal_length() || w != weight))
+                  throw ScarpError("All damage materials of a scene must "
+                                   "share the non-local length scale and "
+                                   "weight.");
+                length = m->nonlocal_length();
+                weight = w;
+              }
+          averager =
+            std::make_unique<nonlocal::NonlocalAverager<dim>>(communicator);
+          averager->reinit(weight,
+                           std::max(length, 1e-300),
+                           nonlocal_parameters.skin_fraction);
+        }
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::setup()
+    {
+      TimerOutput::Scope scope(timer, "setup");
+      grid.create_mesh();
+      grid.setup_dofs();
+      particles.initialize(grid.triangulation(),
+                           grid.mapping(),
+                           layout.n_properties());
+      seed_bodies();
+      mpm = std::make_unique<transfer::MpmTransfer<dim>>(
+        grid, particles, layout, material_pointers, transfer_parameters);
+      mpm->setup();
+      double rho_max = 0;
+      for (const auto &m : materials)
+        rho_max = std::max(rho_max, m->density());
+      mpm->set_mass_cutoff(transfer_parameters.mass_cutoff * rho_max *
+                           std::pow(grid.minimum_cell_size(), dim));
+      last_report = measure();
+      initial_energy  = last_report.kinetic_energy +
+                       last_report.gravitational_energy;
+      scale_of_energy = last_report.kinetic_energy;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::seed_bodies()
+    {
+      types::particle_index next_id = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const Body &body = bodies[b];
+          const materials::Material &material = *materials[body.material];
+          const auto inside = [&](const Point<dim> &x) {
+            if (!body.shape->contains(x))
+              return false;
+            for (unsigned int c = 0; c < b; ++c)
+              if (bodies[c].shape->contains(x))
+                return false;
+            return true;
+          };
+          const auto initialize =
+            [&](const Point<dim> &x, const double volume, double *p) {
+              p[layout.mass]             = material.density() * volume;
+              p[layout.reference_volume] = volume;
+              Vector<double> v(dim), s(6);
+              body.velocity->vector_value(x, v);
+              body.stress->vector_value(x, s);
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  p[layout.velocity + d]           = v[d];
+                  p[layout.reference_position + d] = x[d];
+                  p[layout.deformation_gradient + d * dim + d] = 1.;
+                }
+              SymmetricTensor<2, 3> sigma;
+              for (unsigned int k = 0; k < 6; ++k)
+                sigma.access_raw_entry(k) = s[k];
+              layout.set_stress(p, layout.stress, sigma);
+              p[layout.material_id] = body.material;
+              p[layout.body_id]     = b;
+              material.initialize_state(sigma, p + layout.state);
+              bool damaged = false;
+              for (const auto &region : predamaged)
+                damaged = damaged || region->contains(x);
+              if constexpr (dim == 2)
+                if (body.cliff && body.cliff->has_crack() &&
+                    body.cliff->crack_region().contains(x))
+                  damaged = true;
+              if (damaged)
+                material.set_fully_damaged(p + layout.state);
+            };
+          const auto n = particles::BodySeeder<dim>::seed(
+            grid.triangulation(),
+            particles,
+            body.shape->bounding_box(),
+            inside,
+            body.per_direction,
+            next_id,
+            initialize);
+          if (n == 0)
+            throw ScarpError("Body " + body.name +
+                             " has no material point inside the background "
+                             "mesh: is it outside the mesh, or smaller than "
+                             "a cell?");
+          // Any part of the body outside the mesh would be silently lost.
+          const BoundingBox<dim> box = body.shape->bounding_box();
+          for (unsigned int d = 0; d < dim; ++d)
+            if (box.lower_bound(d) < grid.domain().lower_bound(d) - 1e-12 ||
+                box.upper_bound(d) > grid.domain().upper_bound(d) + 1e-12)
+              throw ScarpError("Body " + body.name +
+                               " reaches outside the background mesh in "
+                               "direction " +
+                               std::to_string(d) +
+                               ": enlarge the <Mesh> box or move the body.");
+          pcout << "Body " << body.name << ": " << n << " material points"
+                << std::endl;
+          next_id += n;
+        }
+      particles.update_cached_numbers();
+    }
+
+
+    template <int dim>
+    transfer::StepReport
+    Simulation<dim>::measure() const
+    {
+      transfer::StepReport report = mpm->measure(gravity);
+      report.reduce(communicator);
+      return report;
+    }
+
+
+    template <int dim>
+    double
+    Simulation<dim>::stable_time_step() const
+    {
+      double c = 0;
+      for (const auto &m : materials)
+        c = std::max(c, std::sqrt(m->p_wave_modulus() / m->density()));
+      return std::min(max_time_step,
+                      cfl * grid.minimum_cell_size() /
+                        (c + last_report.max_speed));
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::nonlocal_damage_step(const Stage &stage)
+    {
+      if (!averager || !stage.damage)
+        return;
+      TimerOutput::Scope scope(timer, "non-local damage");
+      if (local_boxes.empty())
+        local_boxes = GridTools::compute_mesh_predicate_bounding_box(
+          grid.triangulation(),
+          IteratorFilters::LocallyOwnedCell(),
+          1,
+          true,
+          4);
+      averager->compute(local_boxes,
+                        damage_points.position,
+                        damage_points.volume,
+                        damage_points.driver,
+                        damage_points.receiver,
+                        damage_points.id,
+                        nonlocal_driver);
+      for (std::size_t k = 0; k < damage_points.position.size(); ++k)
+        if (damage_points.receiver[k])
+          {
+            double *p = damage_points.properties[k];
+            materials[static_cast<unsigned int>(p[layout.material_id])]
+              ->update_damage(nonlocal_driver[k], dt, p + layout.state);
+          }
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::check(const transfer::StepReport &report,
+                           const Stage                &stage)
+    {
+      std::string cause;
+      std::string failure = report.failure_message();
+      if (report.n_outside > 0 && remove_outside &&
+          report.n_failures() == report.n_outside)
+        failure.clear();
+      if (!failure.empty())
+        {
+          if (report.n_outside > 0 && report.n_failures() == report.n_outside)
+            cause = "a body leaves the background mesh: enlarge the <Mesh> "
+                    "box, or set <Points leaving the mesh> = remove.";
+          else if (report.n_inverted > 0 && report.n_not_finite == 0 &&
+                   report.n_too_fast == 0)
+            cause = "extreme distortion of a material point: a time step "
+                    "too large for the stiffness (<CFL number>), or a "
+                    "material too soft for the load.";
+          else
+            cause = "an unstable step: the <CFL number> (" +
+                    std::to_string(cfl) +
+                    ") is too large for the stiffness and speed, or nodes "
+                    "with tiny mass (<Small mass cutoff>, USL).";
+        }
+      else
+        {
+          // Energy balance: everything that entered minus what left.
+          const double balance = report.kinetic_energy +
+                                 report.gravitational_energy + internal_work +
+                                 damping_dissipation + boundary_dissipation;
+          last_residual   = balance - initial_energy;
+          scale_of_energy = std::max(
+            {scale_of_energy,
+             report.kinetic_energy,
+             std::abs(report.gravitational_energy -
+                      (initial_energy - last_report.kinetic_energy * 0)),
+             std::abs(internal_work),
+             report.stored_energy});
+          if (last_residual > growth_tolerance * scale_of_energy &&
+              scale_of_energy > 0)
+            {
+              std::ostringstream s;
+              s << "The energy grew by " << last_residual << " J ("
+                << 100 * last_residual / scale_of_energy
+                << " % of the largest energy of the run, tolerance "
+                << 100 * growth_tolerance << " %).";
+              failure = s.str();
+              cause   = "an unstable step: the <CFL number> (" +
+                      std::to_string(cfl) +
+                      ") is too large for the stiffness and speed.";
+            }
+        }
+      if (failure.empty())
+        return;
+      std::ostringstream message;
+      message << "Stage " << stage.name << ", step " << step << " (t = "
+              << current_time << " s, dt = " << dt << " s): " << failure
+              << " Likely cause: " << cause;
+      write_summary("error: " + message.str());
+      throw ScarpError(message.str());
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::advance(const Stage &stage)
+    {
+      dt = stable_time_step();
+      if (current_time + dt > stage.end_time)
+        dt = std::max(stage.end_time - current_time, 1e-300);
+      for (auto &m : materials)
+        m->set_inelastic_enabled(stage.plasticity, stage.damage);
+
+      transfer::StepReport report;
+      {
+        TimerOutput::Scope scope(timer, "MPM step");
+        report = mpm->step(dt,
+                           gravity,
+                           stage.damping,
+                           (any_damage && stage.damage) ? &damage_points :
+                                                          nullptr);
+        report.reduce(communicator);
+      }
+      internal_work += report.internal_work;
+      damping_dissipation += report.damping_dissipation;
+      boundary_dissipation += report.boundary_dissipation;
+      current_time += dt;
+      ++step;
+      check(report, stage);
+      nonlocal_damage_step(stage);
+      {
+        TimerOutput::Scope scope(timer, "sort particles");
+        particles.sort_particles_into_subdomains_and_cells();
+      }
+      if (report.n_outside > 0)
+        n_removed += report.n_outside;
+      if (first_damage_time < 0 && report.max_damage > 0.5 &&
+          stage.damage && any_damage)
+        first_damage_time = current_time;
+      last_report = report;
+      if (grid.adaptive_refinement && step % grid.refinement_interval == 0)
+        refine_mesh();
+      if (step >= max_steps)
+        {
+          write_summary("error: maximum number of steps reached");
+          throw ScarpError("Stage " + stage.name + ": the run reached <Maximum "
+                           "steps> = " +
+                           std::to_string(max_steps) + " at t = " +
+                           std::to_string(current_time) + " s.");
+        }
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::refine_mesh()
+    {
+      TimerOutput::Scope scope(timer, "refinement");
+      auto &tria = grid.triangulation();
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            bool damaged = false;
+            for (const auto &particle : particles.particles_in_cell(cell))
+              {
+                const double *p = particle.get_properties().data();
+                const auto   &m =
+                  *materials[static_cast<unsigned int>(p[layout.material_id])];
+                if (m.damage(p + layout.state) > grid.refinement_damage_limit)
+                  {
+                    damaged = true;
+                    break;
+                  }
+              }
+            if (damaged)
+              {
+                if (static_cast<unsigned int>(cell->level()) <
+                    grid.max_refinement_level)
+                  cell->set_refine_flag();
+              }
+            else if (cell->level() > 0)
+              cell->set_coarsen_flag();
+          }
+      // A ring of refined cells around the damaged ones.
+      std::vector<typename Triangulation<dim>::active_cell_iterator> ring;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->refine_flag_set())
+          for (const unsigned int f : cell->face_indices())
+            if (!cell->at_boundary(f) && cell->neighbor(f)->is_active() &&
+                cell->neighbor(f)->is_locally_owned())
+              ring.push_back(cell->neighbor(f));
+      for (const auto &cell : ring)
+        {
+          cell->clear_coarsen_flag();
+          if (static_cast<unsigned int>(cell->level()) <
+              grid.max_refinement_level)
+            cell->set_refine_flag();
+        }
+      particles.prepare_for_coarsening_and_refinement();
+      tria.execute_coarsening_and_refinement();
+      particles.unpack_after_coarsening_and_refinement();
+      grid.setup_dofs();
+      mpm->setup();
+      local_boxes.clear();
+      if (averager)
+        averager->invalidate_neighbour_lists();
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_output()
+    {
+      if (!outputs_enabled)
+        return;
+      TimerOutput::Scope scope(timer, "output");
+      vtu->write_particles(particles, layout, current_time, output_index);
+      if (write_mesh_files)
+        vtu->write_mesh(grid,
+                        mpm->nodal_mass(),
+                        mpm->nodal_velocity(),
+                        current_time,
+                        output_index);
+      ++output_index;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_statistics(const transfer::StepReport &r,
+                                      const Stage                &stage)
+    {
+      (void)stage;
+      if (!statistics)
+        return;
+      const double material_dissipation = internal_work - r.stored_energy;
+      statistics->write_row({double(step),
+                             current_time,
+                             dt,
+                             double(current_stage),
+                             r.kinetic_energy,
+                             r.stored_energy,
+                             r.gravitational_energy,
+                             internal_work,
+                             damping_dissipation,
+                             boundary_dissipation,
+                             r.plastic_dissipation,
+                             r.damage_dissipation,
+                             material_dissipation,
+                             last_residual,
+                             r.momentum[0],
+                             r.momentum[1],
+                             r.momentum[2],
+                             r.angular_momentum[0],
+                             r.angular_momentum[1],
+                             r.angular_momentum[2],
+                             r.n_points,
+                             r.mass,
+                             r.max_speed,
+                             r.max_damage,
+                             r.damaged_volume,
+                             wall_clock.wall_time()});
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::print_progress(const transfer::StepReport &r,
+                                    const Stage                &stage,
+                                    const bool                  force)
+    {
+      const double wall = wall_clock.wall_time();
+      if (!force && wall - last_progress_wall < 2.)
+        return;
+      last_progress_wall = wall;
+      const double done  = current_time / stages.back().end_time;
+      const double eta   = done > 0 ? wall * (1 - done) / done : 0;
+      pcout << "  " << std::setw(8) << stage.name << "  step " << std::setw(7)
+            << step << "  t = " << std::setw(10) << std::setprecision(5)
+            << current_time << " s  dt = " << std::setw(9)
+            << std::setprecision(3) << dt
+            << " s  E_kin = " << std::setw(10) << r.kinetic_energy
+            << " J  max d = " << std::setw(5) << std::setprecision(3)
+            << r.max_damage << "  wall " << format_seconds(wall)
+            << "  ETA <= " << format_seconds(eta) << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_summary(const std::string &how_it_ended)
+    {
+      if (!outputs_enabled ||
+          Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      postprocess::JsonObject summary;
+      summary.add("ended", how_it_ended);
+      summary.add("dimension", double(dim));
+      summary.add("mpi_ranks",
+                  double(Utilities::MPI::n_mpi_processes(communicator)));
+      summary.add("steps", double(step));
+      summary.add("time", current_time);
+      summary.add("material_points", last_report.n_points);
+      summary.add("cells", double(grid.triangulation().n_global_active_cells()));
+      summary.add("wall_time", wall_clock.wall_time());
+      const double point_steps = last_report.n_points * step;
+      summary.add("particle_steps_per_second",
+                  point_steps / std::max(wall_clock.wall_time(), 1e-9));
+      postprocess::JsonObject energies;
+      energies.add("kinetic", last_report.kinetic_energy);
+      energies.add("strain", last_report.stored_energy);
+      energies.add("gravitational", last_report.gravitational_energy);
+      energies.add("internal_work", internal_work);
+      energies.add("damping_dissipation", damping_dissipation);
+      energies.add("boundary_dissipation", boundary_dissipation);
+      energies.add("plastic_dissipation", last_report.plastic_dissipation);
+      energies.add("damage_dissipation", last_report.damage_dissipation);
+      energies.add("balance_residual", last_residual);
+      summary.add("energies", energies);
+      postprocess::JsonObject phases;
+      for (const auto &[name, seconds] :
+           timer.get_summary_data(TimerOutput::total_wall_time))
+        phases.add(name, seconds);
+      summary.add("wall_time_per_phase", phases);
+      summary.add("stages", stage_summaries);
+      summary.add("max_damage", last_report.max_damage);
+      summary.add("first_damage_time", first_damage_time);
+      summary.add("points_removed", n_removed);
+      summary.write(output_directory + "/summary.json");
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::run_until(const double t)
+    {
+      outputs_enabled = false;
+      Stage stage = stages.front();
+      for (const auto &s : stages)
+        if (current_time < s.end_time)
+          {
+            stage = s;
+            break;
+          }
+      stage.end_time = t;
+      while (current_time < t * (1 - 1e-12))
+        advance(stage);
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::run()
+    {
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        std::filesystem::create_directories(output_directory);
+      MPI_Barrier(communicator);
+      wall_clock.restart();
+      setup();
+      pcout << "scarp: " << dim << "D, "
+            << grid.triangulation().n_global_active_cells() << " cells, "
+            << last_report.n_points << " material points on "
+            << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
+            << std::endl;
+      vtu = std::make_unique<postprocess::VtuOutput<dim>>(output_directory,
+                                                          communicator);
+      statistics = std::make_unique<postprocess::StatisticsFile>(
+        output_directory + "/statistics.csv",
+        std::vector<std::string>{"step",
+                                 "time",
+                                 "dt",
+                                 "stage",
+                                 "kinetic_energy",
+                                 "strain_energy",
+                                 "gravitational_energy",
+                                 "internal_work",
+                                 "damping_dissipation",
+                                 "boundary_dissipation",
+                                 "plastic_dissipation",
+                                 "damage_dissipation",
+                                 "material_dissipation",
+                                 "energy_residual",
+                                 "momentum_x",
+                                 "momentum_y",
+                                 "momentum_z",
+                                 "angular_momentum_x",
+                                 "angular_momentum_y",
+                                 "angular_momentum_z",
+                                 "material_points",
+                                 "mass",
+                                 "max_speed",
+                                 "max_damage",
+                                 "damaged_volume",
+                                 "wall_time"},
+        Utilities::MPI::this_mpi_process(communicator) == 0);
+      write_statistics(last_report, stages.front());
+      write_output();
+      next_output = output_interval;
+
+      for (current_stage = 0; current_stage < stages.size(); ++current_stage)
+        {
+          const Stage &stage      = stages[current_stage];
+          const double start_time = current_time;
+          const unsigned int start_step = step;
+          const double start_wall = wall_clock.wall_time();
+          stage_peak_kinetic      = 0;
+          settled_since           = -1;
+          std::string reason      = "end time";
+          pcout << "Stage " << stage.name << " (to t = " << stage.end_time
+                << " s)" << std::endl;
+          while (current_time < stage.end_time * (1 - 1e-12))
+            {
+              advance(stage);
+              if (step % statistics_interval == 0)
+                write_statistics(last_report, stage);
+              if (output_interval > 0 &&
+                  current_time >= next_output * (1 - 1e-12))
+                {
+                  write_output();
+                  while (next_output <= current_time * (1 + 1e-12))
+                    next_output += output_interval;
+                }
+              print_progress(last_report, stage, false);
+              if (stage.settle)
+                {
+                  stage_peak_kinetic =
+                    std::max(stage_peak_kinetic, last_report.kinetic_energy);
+                  const bool quiet =
+                    step - start_step > 20 &&
+                    last_report.kinetic_energy <=
+                      stage.kinetic_ratio * stage_peak_kinetic;
+                  if (!quiet)
+                    settled_since = -1;
+                  else if (settled_since < 0)
+                    settled_since = current_time;
+                  if (quiet && current_time - settled_since >= stage.settle_time)
+                    {
+                      reason = "kinetic energy settled";
+                      break;
+                    }
+                }
+            }
+          if (stage.reset_displacement)
+            for (auto &particle : particles)
+              layout.set_vector(particle.get_properties().data(),
+                                layout.reference_position,
+                                particle.get_location());
+          write_statistics(last_report, stage);
+          write_output();
+          print_progress(last_report, stage, true);
+          postprocess::JsonObject s;
+          s.add("end_reason", reason);
+          s.add("start_time", start_time);
+          s.add("end_time", current_time);
+          s.add("steps", double(step - start_step));
+          s.add("wall_time", wall_clock.wall_time() - start_wall);
+          s.add("kinetic_energy", last_report.kinetic_energy);
+          stage_summaries.add(stage.name, s);
+          pcout << "Stage " << stage.name << " ended (" << reason
+                << ") at t = " << current_time << " s after "
+                << step - start_step << " steps" << std::endl;
+        }
+      write_summary("completed");
+      timer.print_wall_time_statistics(communicator);
+      pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
+            << step << " steps, "
+            << last_report.n_points * step /
+                 std::max(wall_clock.wall_time(), 1e-9)
+            << " particle-steps/s. Output in " << output_directory << "/"
+            << std::endl;
+    }
+
+    template class Simulation<2>;
+    template class Simulation<3>;
+  } // namespace simulation
+} // namespace scarp

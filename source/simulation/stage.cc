@@ -1,0 +1,79 @@
+#include <scarp/base/exceptions.h>
+#include <scarp/simulation/stage.h>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    void
+    Stage::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(0.),
+                        "Simulated time [s] (counted from the start of the "
+                        "run) at which the stage ends at the latest.");
+      prm.declare_entry("End on kinetic energy",
+                        "false",
+                        Patterns::Bool(),
+                        "End the stage earlier, once the kinetic energy has "
+                        "stayed below <Kinetic energy ratio> times its "
+                        "largest value in this stage for <Settle time>.");
+      prm.declare_entry("Kinetic energy ratio",
+                        "1e-4",
+                        Patterns::Double(0., 1.),
+                        "See <End on kinetic energy>.");
+      prm.declare_entry("Settle time",
+                        "0",
+                        Patterns::Double(0.),
+                        "See <End on kinetic energy> [s].");
+      prm.declare_entry("Damping type",
+                        "none",
+                        Patterns::Selection("none|viscous|local"),
+                        "Damping of the grid forces: viscous (f -= c m v, "
+                        "<Damping> is c in 1/s) or local (Cundall: f -= "
+                        "alpha |f| sign(v), <Damping> is alpha in [0,1)).");
+      prm.declare_entry("Damping",
+                        "0",
+                        Patterns::Double(0.),
+                        "Damping coefficient, see <Damping type>.");
+      prm.declare_entry("Plasticity",
+                        "true",
+                        Patterns::Bool(),
+                        "Plastic returns on (false: elastic, e.g. while "
+                        "loading gravity).");
+      prm.declare_entry("Damage",
+                        "true",
+                        Patterns::Bool(),
+                        "Damage evolution on (false: damage frozen).");
+      prm.declare_entry("Reset displacement",
+                        "false",
+                        Patterns::Bool(),
+                        "At the end of the stage, take the current positions "
+                        "as the reference for displacements (after gravity "
+                        "loading).");
+    }
+
+
+    void
+    Stage::parse_parameters(ParameterHandler &prm)
+    {
+      end_time      = prm.get_double("End time");
+      settle        = prm.get_bool("End on kinetic energy");
+      kinetic_ratio = prm.get_double("Kinetic energy ratio");
+      settle_time   = prm.get_double("Settle time");
+      const std::string type = prm.get("Damping type");
+      damping.type = type == "viscous" ? transfer::Damping::Type::viscous :
+                     type == "local"   ? transfer::Damping::Type::local :
+                                         transfer::Damping::Type::none;
+      damping.coefficient = prm.get_double("Damping");
+      if (damping.type == transfer::Damping::Type::local &&
+          damping.coefficient >= 1.)
+        throw ScarpError("Stage " + name +
+                         ": local <Damping> must be below 1.");
+      plasticity         = prm.get_bool("Plasticity");
+      damage             = prm.get_bool("Damage");
+      reset_displacement = prm.get_bool("Reset displacement");
+    }
+  } // namespace simulation
+} // namespace scarp
