@@ -99,6 +99,16 @@ namespace scarp
                         dim == 2 ? "0, -9.81" : "0, 0, -9.81",
                         *ParameterTools::double_list(dim),
                         "Gravitational acceleration [m/s^2].");
+      prm.enter_subsection("Body force");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.declare_entry("Enabled",
+                        "false",
+                        Patterns::Bool(),
+                        "Add this body force per unit mass [m/s^2], a "
+                        "function of the reference position (x, y[, z]) and "
+                        "time t (for manufactured solutions). Its work is not "
+                        "part of the energy balance.");
+      prm.leave_subsection();
       prm.leave_subsection();
       prm.enter_subsection("Time");
       prm.declare_entry("CFL number",
@@ -240,6 +250,13 @@ namespace scarp
 
       prm.enter_subsection("Physics");
       gravity = ParameterTools::get_vector<dim>(prm, "Gravity");
+      prm.enter_subsection("Body force");
+      if (prm.get_bool("Enabled"))
+        {
+          body_force = std::make_unique<Functions::ParsedFunction<dim>>(dim);
+          body_force->parse_parameters(prm);
+        }
+      prm.leave_subsection();
       prm.leave_subsection();
       prm.enter_subsection("Time");
       cfl           = prm.get_double("CFL number");
@@ -326,6 +343,8 @@ namespace scarp
     void
     Simulation<dim>::setup()
     {
+      if (mpm)
+        return;
       TimerOutput::Scope scope(timer, "setup");
       grid.create_mesh();
       grid.setup_dofs();
@@ -336,6 +355,7 @@ namespace scarp
       mpm = std::make_unique<transfer::MpmTransfer<dim>>(
         grid, particles, layout, material_pointers, transfer_parameters);
       mpm->setup();
+      mpm->set_body_force(body_force.get());
       double rho_max = 0;
       for (const auto &m : materials)
         rho_max = std::max(rho_max, m->density());
@@ -555,6 +575,8 @@ namespace scarp
       for (auto &m : materials)
         m->set_inelastic_enabled(stage.plasticity, stage.damage);
 
+      if (body_force)
+        body_force->set_time(current_time);
       transfer::StepReport report;
       {
         TimerOutput::Scope scope(timer, "MPM step");
@@ -779,6 +801,8 @@ namespace scarp
     Simulation<dim>::run_until(const double t)
     {
       outputs_enabled = false;
+      if (!mpm)
+        setup();
       Stage stage = stages.front();
       for (const auto &s : stages)
         if (current_time < s.end_time)

@@ -41,7 +41,7 @@ namespace scarp
       template <int dim>
       struct Batch
       {
-        std::vector<Tensor<2, 3>>          delta_F, F;
+        std::vector<Tensor<2, 3>>          delta_F, F, strain_increment;
         std::vector<double *>              state;
         std::vector<SymmetricTensor<2, 3>> stress;
         std::vector<double>                stored_energy, driver;
@@ -53,6 +53,7 @@ namespace scarp
         {
           delta_F.clear();
           F.clear();
+          strain_increment.clear();
           state.clear();
           stress.clear();
           properties.clear();
@@ -165,6 +166,14 @@ namespace scarp
               const double volume = p[layout.reference_volume] * J;
               const SymmetricTensor<2, 3> sigma =
                 layout.get_stress(p, layout.stress);
+              Tensor<1, dim> acceleration = gravity;
+              if (body_force)
+                {
+                  const Point<dim> X(
+                    layout.get_vector(p, layout.reference_position));
+                  for (unsigned int d = 0; d < dim; ++d)
+                    acceleration[d] += body_force->value(X, d);
+                }
               for (unsigned int i = 0; i < n; ++i)
                 {
                   const double   w  = shape.value[i] * m;
@@ -173,7 +182,7 @@ namespace scarp
                     vi += C * (cell->vertex(i) - xp);
                   const Tensor<1, dim> f =
                     -volume * stress_times<dim>(sigma, shape.gradient[i]) +
-                    w * gravity;
+                    w * acceleration;
                   local_mass(i) += w;
                   for (unsigned int d = 0; d < dim; ++d)
                     {
@@ -423,7 +432,12 @@ namespace scarp
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
                     L += outer_product(v_stress[i], shape.gradient[i]);
-                  Tensor<2, dim> dF = unit_symmetric_tensor<dim>() + dt * L;
+                  // Cayley (midpoint) increment: exactly a rotation when L
+                  // is a spin, so rigid rotation creates no stress.
+                  const Tensor<2, dim> half_step = 0.5 * dt * L;
+                  const Tensor<2, dim> dF =
+                    invert(unit_symmetric_tensor<dim>() - half_step) *
+                    (unit_symmetric_tensor<dim>() + half_step);
                   const Tensor<2, dim> F =
                     dF * layout.get_matrix(p, layout.deformation_gradient);
                   layout.set_matrix(p, layout.deformation_gradient, F);
@@ -453,6 +467,8 @@ namespace scarp
                   Batch<dim> &b = batches[static_cast<unsigned int>(
                     p[layout.material_id])];
                   b.delta_F.push_back(embed<dim>(dF, 1.));
+                  b.strain_increment.push_back(
+                    embed<dim>(Tensor<2, dim>(dt * symmetrize(L)), 0.));
                   b.F.push_back(embed<dim>(F, 1.));
                   b.state.push_back(p + layout.state);
                   b.stress.push_back(sigma);
@@ -490,16 +506,11 @@ namespace scarp
                   double                      *p = b.properties[k];
                   const SymmetricTensor<2, 3> &sigma = b.stress[k];
                   layout.set_stress(p, layout.stress, sigma);
-                  const Tensor<2, 3> &dF = b.delta_F[k];
-                  double              power = 0;
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int j = 0; j < dim; ++j)
-                      power += sigma[i][j] * 0.5 * (dF[i][j] + dF[j][i] -
-                                                   2. * (i == j));
                   const double J  = determinant(b.F[k]);
                   const double V0 = p[layout.reference_volume];
-                  // power already holds dt * L (dF - I = dt L).
-                  report.internal_work += 0.5 * V0 * J * power;
+                  // Second half of the trapezoidal stress power.
+                  report.internal_work +=
+                    0.5 * V0 * J * scalar_product(sigma, b.strain_increment[k]);
                   report.stored_energy += V0 * b.stored_energy[k];
                   if (!std::isfinite(sigma.norm()))
                     {

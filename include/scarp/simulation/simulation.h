@@ -171,6 +171,7 @@ namespace scarp
       std::vector<BoundingBox<dim>>                     local_boxes;
 
       Tensor<1, dim> gravity;
+      std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
       double         cfl               = 0.5;
       double         max_time_step     = 1e30;
       std::string    output_directory  = "output";

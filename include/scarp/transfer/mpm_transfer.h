@@ -1,6 +1,7 @@
 #ifndef scarp_transfer_mpm_transfer_h
 #define scarp_transfer_mpm_transfer_h
 
+#include <deal.II/base/function.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/particles/particle_handler.h>
 
@@ -81,6 +82,14 @@ namespace scarp
       void
       setup();
 
+      /// An extra body force per unit mass b(X, t), a function of the
+      /// reference position X (manufactured solutions); nullptr: none.
+      void
+      set_body_force(const Function<dim> *function)
+      {
+        body_force = function;
+      }
+
       /// Nodal mass below which a node is treated as empty [kg].
       void
       set_mass_cutoff(const double cutoff)
@@ -145,6 +154,7 @@ namespace scarp
       std::vector<const materials::Material *>       materials;
       const TransferParameters                      &parameters;
       double                                         mass_cutoff = 0;
+      const Function<dim>                           *body_force  = nullptr;
       Tensor<1, dim>                                 last_gravity;
 
       Vector                  mass;
