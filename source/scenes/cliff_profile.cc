@@ -11,6 +11,11 @@ namespace scarp
 {
   namespace scenes
   {
+    // AssertThrow with the message prefixed by the subsection, as a macro so
+    // that deal.II reports the violated condition itself.
+#define SCARP_CLIFF_REQUIRE(condition, message) \
+  AssertThrow(condition, ExcMessage("Cliff/" + std::string(message)))
+
     namespace
     {
       double
@@ -20,13 +25,6 @@ namespace scarp
         if (angle == 90.)
           return 0.;
         return 1. / std::tan(angle * numbers::PI / 180.);
-      }
-
-
-      void
-      require(const bool condition, const std::string &message)
-      {
-        AssertThrow(condition, ExcMessage("Cliff/" + message));
       }
 
 
@@ -43,12 +41,13 @@ namespace scarp
       void
       check_angle(const double angle, const std::string &name)
       {
-        require(angle > 0. && angle <= 90.,
-                format(name,
-                       " must lie in (0, 90] degrees from the horizontal, "
-                       "got ",
-                       angle,
-                       "."));
+        SCARP_CLIFF_REQUIRE(
+          angle > 0. && angle <= 90.,
+          format(name,
+                 " must lie in (0, 90] degrees from the horizontal, "
+                 "got ",
+                 angle,
+                 "."));
       }
     } // namespace
 
@@ -204,45 +203,51 @@ namespace scarp
                                  p.crack_offset,
                                  p.crack_depth,
                                  p.crack_width})
-        require(std::isfinite(value), "all entries must be finite numbers.");
-      require(p.height > 0., format("Height must be positive, got ", p.height));
+        SCARP_CLIFF_REQUIRE(std::isfinite(value),
+                            "all entries must be finite numbers.");
+      SCARP_CLIFF_REQUIRE(p.height > 0.,
+                          format("Height must be positive, got ", p.height));
       check_angle(p.lower_face_angle, "Lower face angle");
       check_angle(p.upper_face_angle, "Upper face angle");
       check_angle(p.notch_angle, "Notch angle");
-      require(p.upper_face_height >= 0.,
-              format("Upper face height must not be negative, got ",
-                     p.upper_face_height,
-                     "."));
-      require(p.upper_face_height <= p.height,
-              format("Upper face height (",
-                     p.upper_face_height,
-                     ") must not exceed Height (",
-                     p.height,
-                     "): the upper face is taller than the cliff."));
-      require(p.back_length > 0.,
-              format("Back length must be positive, got ", p.back_length, "."));
-      require(p.notch_depth >= 0.,
-              format("Notch depth must not be negative, got ",
-                     p.notch_depth,
-                     "."));
-      require(p.crack_offset >= 0.,
-              format("Crack offset must not be negative, got ",
-                     p.crack_offset,
-                     "."));
-      require(p.crack_depth >= 0.,
-              format("Crack depth must not be negative, got ",
-                     p.crack_depth,
-                     "."));
-      require(p.crack_depth < p.height,
-              format("Crack depth (",
-                     p.crack_depth,
-                     ") must be smaller than Height (",
-                     p.height,
-                     "): the crack would be deeper than the cliff."));
-      require(p.crack_width >= 0.,
-              format("Crack width must not be negative, got ",
-                     p.crack_width,
-                     "."));
+      SCARP_CLIFF_REQUIRE(p.upper_face_height >= 0.,
+                          format("Upper face height must not be negative, got ",
+                                 p.upper_face_height,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(
+        p.upper_face_height <= p.height,
+        format("Upper face height (",
+               p.upper_face_height,
+               ") must not exceed Height (",
+               p.height,
+               "): the upper face is taller than the cliff."));
+      SCARP_CLIFF_REQUIRE(p.back_length > 0.,
+                          format("Back length must be positive, got ",
+                                 p.back_length,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.notch_depth >= 0.,
+                          format("Notch depth must not be negative, got ",
+                                 p.notch_depth,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.crack_offset >= 0.,
+                          format("Crack offset must not be negative, got ",
+                                 p.crack_offset,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.crack_depth >= 0.,
+                          format("Crack depth must not be negative, got ",
+                                 p.crack_depth,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(
+        p.crack_depth < p.height,
+        format("Crack depth (",
+               p.crack_depth,
+               ") must be smaller than Height (",
+               p.height,
+               "): the crack would be deeper than the cliff."));
+      SCARP_CLIFF_REQUIRE(p.crack_width >= 0.,
+                          format("Crack width must not be negative, got ",
+                                 p.crack_width,
+                                 "."));
 
       const double y_b          = p.beach_level;
       const double lower_height = p.height - p.upper_face_height;
@@ -256,13 +261,14 @@ namespace scarp
                              y_b + p.height);
       back_x      = crest_point[0] - p.back_length;
 
-      require(p.toe_position - p.notch_depth > back_x,
-              format("Notch depth (",
-                     p.notch_depth,
-                     ") reaches the back of the body (",
-                     p.toe_position - back_x,
-                     " m behind the toe): increase Back length or reduce "
-                     "Notch depth."));
+      SCARP_CLIFF_REQUIRE(
+        p.toe_position - p.notch_depth > back_x,
+        format("Notch depth (",
+               p.notch_depth,
+               ") reaches the back of the body (",
+               p.toe_position - back_x,
+               " m behind the toe): increase Back length or reduce "
+               "Notch depth."));
 
       // The notch roof x = x_N + s cot(notch) (s: height above the beach)
       // meets the face once, since the face only moves landward as it rises
@@ -286,15 +292,16 @@ namespace scarp
                 (p.notch_depth - lower_height * (cot_lower - cot_upper)) /
                 (cot_notch + cot_upper);
             }
-          require(notch_height < p.height,
-                  format("Notch depth (",
-                         p.notch_depth,
-                         ") with Notch angle (",
-                         p.notch_angle,
-                         ") gives a notch that reaches the crest: the "
-                         "notch would be taller than the cliff (Height ",
-                         p.height,
-                         ")."));
+          SCARP_CLIFF_REQUIRE(
+            notch_height < p.height,
+            format("Notch depth (",
+                   p.notch_depth,
+                   ") with Notch angle (",
+                   p.notch_angle,
+                   ") gives a notch that reaches the crest: the "
+                   "notch would be taller than the cliff (Height ",
+                   p.height,
+                   ")."));
           notch_top_point =
             Point<2>(notch_root_point[0] + notch_height * cot_notch,
                      y_b + notch_height);
@@ -334,13 +341,14 @@ namespace scarp
       if (p.crack_depth > 0.)
         {
           const double half_width = 0.5 * p.crack_width;
-          require(crest_point[0] - p.crack_offset - half_width > back_x,
-                  format("Crack offset (",
-                         p.crack_offset,
-                         ") puts the crack at or beyond the back of the body "
-                         "(Back length ",
-                         p.back_length,
-                         ")."));
+          SCARP_CLIFF_REQUIRE(
+            crest_point[0] - p.crack_offset - half_width > back_x,
+            format("Crack offset (",
+                   p.crack_offset,
+                   ") puts the crack at or beyond the back of the body "
+                   "(Back length ",
+                   p.back_length,
+                   ")."));
         }
     }
 

@@ -119,13 +119,18 @@ namespace scarp
       box = BoundingBox<2>(v);
 
       {
+        // All vertices on one line: the fan triangles from vertex 0 all have
+        // zero area. Checked before self-intersection, which such a polygon
+        // also is, because "zero area" is the clearer message.
         const double diameter_2 =
           (box.get_boundary_points().second - box.get_boundary_points().first)
             .norm_square();
-        std::ostringstream message;
-        message << "Vertices: the polygon has zero area (its vertices lie on "
-                   "a line).";
-        AssertThrow(area() > 1e-12 * diameter_2, ExcMessage(message.str()));
+        double fan = 0.;
+        for (unsigned int i = 1; i + 1 < n; ++i)
+          fan += std::abs(orientation(v[0], v[i], v[i + 1]));
+        AssertThrow(fan > 1e-12 * diameter_2,
+                    ExcMessage("Vertices: the polygon has zero area (its "
+                               "vertices lie on a line)."));
       }
 
       // Self-intersection, O(n^2): scene polygons have few vertices.
@@ -159,6 +164,16 @@ namespace scarp
                           : "cross or touch.");
             AssertThrow(!bad, ExcMessage(message.str()));
           }
+
+      // A simple polygon has a positive area; this only catches slivers
+      // below round-off.
+      {
+        const double diameter_2 =
+          (box.get_boundary_points().second - box.get_boundary_points().first)
+            .norm_square();
+        AssertThrow(area() > 1e-12 * diameter_2,
+                    ExcMessage("Vertices: the polygon has zero area."));
+      }
     }
 
 

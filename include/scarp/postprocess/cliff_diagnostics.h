@@ -40,7 +40,9 @@ namespace scarp
      *    after more than g of consecutive bins at or below it. The toe x is
      *    that bin's seaward edge. initial_toe uses y_initial, debris_toe
      *    y_final; run_out = debris_toe - initial_toe (exactly zero without
-     *    motion; initial_toe is the geometric toe to within one bin).
+     *    motion). initial_toe is the most seaward material to within one bin:
+     *    the toe T without a notch, the notch top U with one (the notch
+     *    removes the tip of the face; 9 cm landward of T for Joss Bay).
      *  - Accumulation zone: bins where y_final > y_initial + tau. Its seaward
      *    end is the first such bin met walking landward from the debris toe;
      *    walking on landward (gaps up to g allowed), its landward end is the
