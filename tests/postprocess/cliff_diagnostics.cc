@@ -124,6 +124,11 @@ namespace
     const double length = r.fit_x_end - r.fit_x_begin;
     const double cos_2  = std::pow(std::cos(angle * M_PI / 180.), 2);
     const double angle_tolerance = cos_2 * 1.5 * d / length * 180. / M_PI;
+    // For a look with tools/plot_cliff.py.
+    Diagnostics::write_profile_csv("pile_" + std::to_string(int(angle)) +
+                                     (jitter > 0. ? "_jitter" : "") + ".csv",
+                                   profile,
+                                   &r);
     CHECK(length > 5.);
     CHECK(r.n_fit_points > 50);
     CHECK_CLOSE(r.debris_angle, angle, angle_tolerance);
