@@ -92,8 +92,10 @@ namespace scarp
     template <int dim>
     template <typename VectorType>
     double
-    BoundaryConditions<dim>::apply(const VectorType              &mass,
-                                   std::array<VectorType *, dim> velocity) const
+    BoundaryConditions<dim>::apply(
+      const VectorType                    &mass,
+      std::array<VectorType *, dim>        velocity,
+      const std::array<VectorType *, dim> *start_velocity) const
     {
       double removed = 0.;
       for (const Node &node : nodes)
@@ -101,7 +103,7 @@ namespace scarp
           Tensor<1, dim> v;
           for (unsigned int d = 0; d < dim; ++d)
             v[d] = (*velocity[d])(node.dof);
-          const double energy_before = v.norm_square();
+          const Tensor<1, dim> v_free = v;
           for (unsigned int f = 0; f < 2 * dim; ++f)
             if (node.faces & (1u << f))
               {
@@ -135,7 +137,13 @@ namespace scarp
               }
           for (unsigned int d = 0; d < dim; ++d)
             (*velocity[d])(node.dof) = v[d];
-          removed += 0.5 * mass(node.dof) * (energy_before - v.norm_square());
+          if (start_velocity)
+            {
+              Tensor<1, dim> v_start;
+              for (unsigned int d = 0; d < dim; ++d)
+                v_start[d] = (*(*start_velocity)[d])(node.dof);
+              removed += mass(node.dof) * ((v_free - v) * (v_start + v)) / 2;
+            }
         }
       return removed;
     }
@@ -144,8 +152,12 @@ namespace scarp
     template class BoundaryConditions<3>;
     using Vector = LinearAlgebra::distributed::Vector<double>;
     template double
-    BoundaryConditions<2>::apply(const Vector &, std::array<Vector *, 2>) const;
+    BoundaryConditions<2>::apply(const Vector &,
+                                 std::array<Vector *, 2>,
+                                 const std::array<Vector *, 2> *) const;
     template double
-    BoundaryConditions<3>::apply(const Vector &, std::array<Vector *, 3>) const;
+    BoundaryConditions<3>::apply(const Vector &,
+                                 std::array<Vector *, 3>,
+                                 const std::array<Vector *, 3> *) const;
   } // namespace grid
 } // namespace scarp

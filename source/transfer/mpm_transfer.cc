@@ -262,7 +262,7 @@ namespace scarp
         }
       grid.boundary_conditions().apply(mass, old_ptr);
       report.boundary_dissipation +=
-        grid.boundary_conditions().apply(mass, new_ptr);
+        grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
 
       for (unsigned int d = 0; d < dim; ++d)
         for (Vector *v : {&velocity_old[d], &velocity_new[d]})

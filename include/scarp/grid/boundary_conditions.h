@@ -48,13 +48,18 @@ namespace scarp
 
       /**
        * Apply the conditions to the nodal velocity components @p velocity
-       * (one vector per direction, indexed by global dof). Returns the
-       * kinetic energy per unit nodal mass change summed with @p mass, i.e.
-       * the energy the boundary removed: sum_i m_i (|v_free|^2-|v|^2)/2.
+       * (one vector per direction, indexed by global dof). If
+       * @p start_velocity (the constrained velocity at the start of the
+       * step) is given, returns the energy the boundary removed over the
+       * step: the work of the reaction impulse m (v_free - v) against the
+       * mean velocity (v_start + v)/2; it is zero on fixed and slip faces
+       * and the friction loss on friction faces.
        */
       template <typename VectorType>
       double
-      apply(const VectorType &mass, std::array<VectorType *, dim> velocity)
+      apply(const VectorType                    &mass,
+            std::array<VectorType *, dim>        velocity,
+            const std::array<VectorType *, dim> *start_velocity = nullptr)
         const;
 
       BoundaryType
