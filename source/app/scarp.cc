@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
 #include <scarp/simulation/scene_lists.h>
 #include <scarp/simulation/simulation.h>
 
@@ -44,7 +45,7 @@ namespace
   {
     ParameterHandler prm;
     simulation::Simulation<dim>::declare_parameters(prm, lists);
-    prm.parse_input(filename);
+    ParameterTools::parse_file(prm, filename);
     simulation::Simulation<dim> sim(MPI_COMM_WORLD, lists);
     sim.parse_parameters(prm);
     sim.run();

@@ -3,6 +3,8 @@
 #include <scarp/base/exceptions.h>
 #include <scarp/base/parameter_tools.h>
 
+#include <filesystem>
+
 namespace scarp
 {
   namespace ParameterTools
@@ -56,6 +58,28 @@ namespace scarp
     get_vector(const ParameterHandler &prm, const std::string &entry)
     {
       return get_point<dim>(prm, entry);
+    }
+
+
+    void
+    parse_file(ParameterHandler  &prm,
+               const std::string &filename,
+               const bool         skip_undefined)
+    {
+      namespace fs                = std::filesystem;
+      const fs::path absolute     = fs::absolute(filename);
+      const fs::path working_dir  = fs::current_path();
+      fs::current_path(absolute.parent_path());
+      try
+        {
+          prm.parse_input(absolute.string(), "", skip_undefined);
+        }
+      catch (...)
+        {
+          fs::current_path(working_dir);
+          throw;
+        }
+      fs::current_path(working_dir);
     }
 
 

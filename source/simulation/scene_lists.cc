@@ -70,7 +70,7 @@ namespace scarp
     {
       ParameterHandler prm;
       declare_parameters(prm);
-      prm.parse_input(filename, "", /*skip_undefined=*/true);
+      ParameterTools::parse_file(prm, filename, /*skip_undefined=*/true);
       SceneLists lists;
       lists.parse_parameters(prm);
       return lists;

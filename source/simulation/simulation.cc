@@ -39,7 +39,7 @@ namespace scarp
       : communicator(communicator)
       , lists(lists)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-      , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+      , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
       , grid(communicator)
     {}
 

@@ -247,13 +247,13 @@ namespace scarp
                          (v_old > 0 ? 1. : (v_old < 0 ? -1. : 0.));
               f += f_damp;
               const double v_new = v_old + dt * f / m;
-              damping_work += dt * f_damp * 0.5 * (v_old + v_new);
+              // Keep the damping force: its work is taken after the
+              // boundary conditions, with the velocities the nodes have.
+              force[d].local_element(k)        = f_damp;
               velocity_old[d].local_element(k) = v_old;
               velocity_new[d].local_element(k) = v_new;
             }
         }
-      report.damping_dissipation -= damping_work;
-
       std::array<Vector *, dim> old_ptr, new_ptr;
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -263,6 +263,14 @@ namespace scarp
       grid.boundary_conditions().apply(mass, old_ptr);
       report.boundary_dissipation +=
         grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
+      if (damping.type != Damping::Type::none)
+        for (unsigned int k = 0; k < n_owned; ++k)
+          if (mass.local_element(k) > mass_cutoff)
+            for (unsigned int d = 0; d < dim; ++d)
+              damping_work += dt * force[d].local_element(k) * 0.5 *
+                              (velocity_old[d].local_element(k) +
+                               velocity_new[d].local_element(k));
+      report.damping_dissipation -= damping_work;
 
       for (unsigned int d = 0; d < dim; ++d)
         for (Vector *v : {&velocity_old[d], &velocity_new[d]})

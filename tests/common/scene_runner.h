@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <scarp/base/parameter_tools.h>
 #include <scarp/simulation/scene_lists.h>
 #include <scarp/simulation/simulation.h>
 
@@ -24,10 +25,13 @@ namespace scarp_test
   using namespace scarp;
 
   /// Build a simulation from parameter text (the same two passes as the
-  /// scarp command line) and set it up.
+  /// scarp command line) and set it up. With @p communicator =
+  /// MPI_COMM_SELF every rank builds its own serial copy of the scene (to
+  /// compare a parallel run with a serial one).
   template <int dim>
   std::unique_ptr<simulation::Simulation<dim>>
-  make_scene(const std::string &text)
+  make_scene(const std::string &text,
+             const MPI_Comm     communicator = MPI_COMM_WORLD)
   {
     const std::string filename =
       "scene_" +
@@ -40,15 +44,24 @@ namespace scarp_test
     const auto       lists = simulation::SceneLists::read(filename);
     ParameterHandler prm;
     simulation::Simulation<dim>::declare_parameters(prm, lists);
-    prm.parse_input(filename);
+    ParameterTools::parse_file(prm, filename);
     auto sim =
-      std::make_unique<simulation::Simulation<dim>>(MPI_COMM_WORLD, lists);
+      std::make_unique<simulation::Simulation<dim>>(communicator, lists);
     sim->parse_parameters(prm);
     sim->setup();
     return sim;
   }
 
-  /// Sum over all points (all ranks) of f(properties, location).
+  /// The communicator a simulation runs on.
+  template <int dim>
+  MPI_Comm
+  communicator_of(const simulation::Simulation<dim> &sim)
+  {
+    return sim.background_grid().dof_handler().get_communicator();
+  }
+
+  /// Sum over all points (all ranks of the simulation) of
+  /// f(properties, location).
   template <int dim>
   double
   sum_over_points(
@@ -58,10 +71,11 @@ namespace scarp_test
     double s = 0;
     for (const auto &particle : sim.particle_handler())
       s += f(particle.get_properties().data(), particle.get_location());
-    return Utilities::MPI::sum(s, MPI_COMM_WORLD);
+    return Utilities::MPI::sum(s, communicator_of(sim));
   }
 
-  /// Max over all points (all ranks) of f(properties, location).
+  /// Max over all points (all ranks of the simulation) of
+  /// f(properties, location).
   template <int dim>
   double
   max_over_points(
@@ -71,7 +85,7 @@ namespace scarp_test
     double s = -1e300;
     for (const auto &particle : sim.particle_handler())
       s = std::max(s, f(particle.get_properties().data(), particle.get_location()));
-    return Utilities::MPI::max(s, MPI_COMM_WORLD);
+    return Utilities::MPI::max(s, communicator_of(sim));
   }
 
   /// Print on rank 0.

@@ -38,6 +38,14 @@ namespace scarp
     Tensor<1, dim>
     get_vector(const ParameterHandler &prm, const std::string &entry);
 
+    /// Parse @p filename into @p prm with `include` lines resolved relative
+    /// to the directory of the including file (deal.II resolves them
+    /// relative to the working directory).
+    void
+    parse_file(ParameterHandler  &prm,
+               const std::string &filename,
+               const bool         skip_undefined = false);
+
     /// Split a comma-separated list of names, trimming blanks; no empties.
     std::vector<std::string>
     get_names(const ParameterHandler &prm, const std::string &entry);
