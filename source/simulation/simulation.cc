@@ -148,6 +148,15 @@ namespace scarp
                         Patterns::Bool(),
                         "Write the background mesh with the particles.");
       prm.leave_subsection();
+      prm.enter_subsection("Cliff diagnostics");
+      postprocess::CliffDiagnostics::declare_parameters(prm);
+      prm.declare_entry("Failure speed",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Failure onset: the first time, in a stage with damage, "
+                        "that a material point of the cliff moves faster than "
+                        "this [m/s]. Used only by scenes with a cliff body.");
+      prm.leave_subsection();
       prm.enter_subsection("Stability");
       prm.declare_entry("Energy growth tolerance",
                         "0.1",
@@ -292,6 +301,14 @@ namespace scarp
       statistics_interval = prm.get_integer("Statistics interval");
       write_mesh_files    = prm.get_bool("Write mesh");
       prm.leave_subsection();
+      prm.enter_subsection("Cliff diagnostics");
+      cliff_diagnostics.parse_parameters(prm);
+      cliff_diagnostics.set_cell_size(grid.coarse_cell_size());
+      failure_speed = prm.get_double("Failure speed");
+      prm.leave_subsection();
+      for (const auto &body : bodies)
+        if (body.cliff && !cliff)
+          cliff = body.cliff.get();
       prm.enter_subsection("Stability");
       growth_tolerance = prm.get_double("Energy growth tolerance");
       remove_outside   = prm.get("Points leaving the mesh") == "remove";
@@ -398,6 +415,15 @@ namespace scarp
                   p[layout.reference_position + d] = x[d];
                   p[layout.deformation_gradient + d * dim + d] = 1.;
                 }
+              // APIC: the affine matrix starts as the gradient of the
+              // initial velocity (else the first step is a PIC step).
+              if (layout.has_affine)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const Tensor<1, dim> g = body.velocity->gradient(x, d);
+                    for (unsigned int e = 0; e < dim; ++e)
+                      p[layout.affine + d * dim + e] = g[e];
+                  }
               SymmetricTensor<2, 3> sigma;
               for (unsigned int k = 0; k < 6; ++k)
                 sigma.access_raw_entry(k) = s[k];
@@ -604,6 +630,12 @@ namespace scarp
           stage.damage && any_damage)
         first_damage_time = current_time;
       last_report = report;
+      if (cliff && stage.damage && failure_time < 0 &&
+          report.max_speed > failure_speed)
+        {
+          failure_time = current_time;
+          cliff_snapshot("failure");
+        }
       if (grid.adaptive_refinement && step % grid.refinement_interval == 0)
         refine_mesh();
       if (step >= max_steps)
@@ -789,6 +821,8 @@ namespace scarp
         phases.add(name, seconds);
       summary.add("wall_time_per_phase", phases);
       summary.add("stages", stage_summaries);
+      if (cliff)
+        summary.add("cliff", cliff_summary);
       summary.add("max_damage", last_report.max_damage);
       summary.add("first_damage_time", first_damage_time);
       summary.add("points_removed", n_removed);
@@ -876,6 +910,11 @@ namespace scarp
           std::string reason      = "end time";
           pcout << "Stage " << stage.name << " (to t = " << stage.end_time
                 << " s)" << std::endl;
+          if (cliff && stage.damage && damage_stage_start < 0)
+            {
+              damage_stage_start = current_time;
+              cliff_snapshot("start");
+            }
           while (current_time < stage.end_time * (1 - 1e-12))
             {
               advance(stage);
@@ -928,6 +967,8 @@ namespace scarp
                 << ") at t = " << current_time << " s after "
                 << step - start_step << " steps" << std::endl;
         }
+      if (cliff)
+        cliff_snapshot("end");
       write_summary("completed");
       timer.print_wall_time_statistics(communicator);
       pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
@@ -937,6 +978,93 @@ namespace scarp
             << " particle-steps/s. Output in " << output_directory << "/"
             << std::endl;
     }
+
+    template <int dim>
+    std::vector<postprocess::CliffDiagnostics::Particle>
+    Simulation<dim>::gather_cliff_points() const
+    {
+      std::vector<double> local;
+      for (const auto &particle : particles)
+        {
+          const double *p = particle.get_properties().data();
+          if (!bodies[static_cast<unsigned int>(p[layout.body_id])].cliff)
+            continue;
+          const auto &m =
+            *materials[static_cast<unsigned int>(p[layout.material_id])];
+          const Point<dim> x = particle.get_location();
+          const double J = determinant(layout.get_matrix(p, layout.deformation_gradient));
+          local.insert(local.end(),
+                       {x[0],
+                        x[1],
+                        p[layout.reference_position],
+                        p[layout.reference_position + 1],
+                        p[layout.reference_volume] * J,
+                        m.damage(p + layout.state)});
+        }
+      const auto all = Utilities::MPI::gather(communicator, local, 0);
+      std::vector<postprocess::CliffDiagnostics::Particle> points;
+      for (const auto &chunk : all)
+        for (std::size_t k = 0; k + 5 < chunk.size(); k += 6)
+          {
+            postprocess::CliffDiagnostics::Particle q;
+            q.position         = Point<2>(chunk[k], chunk[k + 1]);
+            q.initial_position = Point<2>(chunk[k + 2], chunk[k + 3]);
+            q.volume           = chunk[k + 4];
+            q.damage           = chunk[k + 5];
+            points.push_back(q);
+          }
+      return points;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::cliff_snapshot(const std::string &tag)
+    {
+      if (!outputs_enabled || !cliff || dim != 2)
+        return;
+      TimerOutput::Scope scope(timer, "cliff diagnostics");
+      const auto points = gather_cliff_points();
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      postprocess::CliffDiagnostics::write_particles_csv(
+        output_directory + "/cliff_" + tag + "_particles.csv", points);
+      if (tag != "end")
+        return;
+      const auto profile = cliff_diagnostics.surface_profile(
+        points, cliff->get_parameters().beach_level, grid.domain().lower_bound(0),
+        grid.domain().upper_bound(0));
+      const auto r = cliff_diagnostics.analyse(profile, points, *cliff);
+      postprocess::CliffDiagnostics::write_profile_csv(
+        output_directory + "/cliff_profile.csv", profile, &r);
+      const double onset =
+        failure_time >= 0 ? failure_time - damage_stage_start : -1;
+      cliff_summary.add("debris_angle_deg", r.debris_angle);
+      cliff_summary.add("run_out_m", r.run_out);
+      cliff_summary.add("debris_toe_x_m", r.debris_toe);
+      cliff_summary.add("failed_area_m2", r.failed_area);
+      cliff_summary.add("scarp_position_x_m", r.scarp_position);
+      cliff_summary.add("scarp_retreat_m", r.scarp_retreat);
+      cliff_summary.add("failure_onset_s", onset);
+      cliff_summary.add("max_damage", last_report.max_damage);
+      cliff_summary.add("dissipated_energy_J",
+                        last_report.plastic_dissipation +
+                          last_report.damage_dissipation);
+      cliff_summary.add("plastic_dissipation_J",
+                        last_report.plastic_dissipation);
+      cliff_summary.add("damage_dissipation_J",
+                        last_report.damage_dissipation);
+      std::ostringstream s;
+      s << std::setprecision(4) << "Cliff: debris angle " << r.debris_angle
+        << " deg, run-out " << r.run_out << " m, failed area "
+        << r.failed_area << " m^2, scarp at x = " << r.scarp_position
+        << " m, failure onset " << onset << " s after the start of damage, "
+        << "max damage " << last_report.max_damage << ", dissipated "
+        << last_report.plastic_dissipation + last_report.damage_dissipation
+        << " J/m";
+      std::cout << s.str() << std::endl;
+    }
+
 
     template class Simulation<2>;
     template class Simulation<3>;

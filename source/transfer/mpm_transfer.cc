@@ -149,12 +149,16 @@ namespace scarp
               const Point<dim> xp = x0 + h * xi;
               if (momentum_only)
                 {
+                  // The MUSL remap maps the point velocities only, also
+                  // with APIC: C is then the gradient of this remapped
+                  // field (grid_to_particles), and mapping C back here
+                  // would close a loop C -> grid -> C with gain one at a
+                  // point alone next to a nearly empty node, which grows
+                  // without bound once points cross into empty cells.
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       const double   w = shape.value[i] * m;
                       Tensor<1, dim> vi = v;
-                      if (apic)
-                        vi += C * (cell->vertex(i) - xp);
                       local_mass(i) += w;
                       for (unsigned int d = 0; d < dim; ++d)
                         local_momentum[d](i) += w * vi[d];
@@ -410,7 +414,14 @@ namespace scarp
                   if (apic)
                     {
                       v = v_grid;
-                      layout.set_matrix(p, layout.affine, grad_v);
+                      // With MUSL the affine matrix is taken from the
+                      // remapped velocity in the stress pass below: the
+                      // gradient of v_new is unbounded next to nodes of tiny
+                      // mass (grad S_i does not vanish with S_i), and C
+                      // carried into the next P2G would put it back on
+                      // the grid.
+                      if (update_stress)
+                        layout.set_matrix(p, layout.affine, grad_v);
                     }
                   else
                     v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
@@ -423,7 +434,7 @@ namespace scarp
                   const bool finite = std::isfinite(v.norm_square()) &&
                                       std::isfinite(x_new.norm_square());
                   const bool outside = finite && !domain.point_inside(x_new);
-                  const bool too_fast = finite && dx.norm() > h;
+                  const bool too_fast = finite && dx.norm_square() > h * h;
                   if (!finite)
                     report.n_not_finite += 1;
                   report.n_outside += outside;
@@ -440,6 +451,8 @@ namespace scarp
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
                     L += outer_product(v_stress[i], shape.gradient[i]);
+                  if (apic && !update_positions_and_velocities)
+                    layout.set_matrix(p, layout.affine, L);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;

@@ -58,6 +58,37 @@ namespace scarp
             }
           return result;
         }
+      if (A[0][2] == 0. && A[1][2] == 0.)
+        {
+          // Plane strain keeps xz = yz = 0 exactly: the in-plane 2x2 block
+          // has a closed-form decomposition (about ten times cheaper than
+          // the iterative 3x3 one, and exact for repeated eigenvalues).
+          const double mean   = 0.5 * (A[0][0] + A[1][1]);
+          const double half   = 0.5 * (A[0][0] - A[1][1]);
+          const double radius = std::hypot(half, A[0][1]);
+          const double angle  = 0.5 * std::atan2(A[0][1], half);
+          const double c = std::cos(angle), s = std::sin(angle);
+          std::array<double, 3>       values = {{mean + radius,
+                                                 mean - radius,
+                                                 A[2][2]}};
+          std::array<Tensor<1, 3>, 3> vectors;
+          vectors[0][0] = c;
+          vectors[0][1] = s;
+          vectors[1][0] = -s;
+          vectors[1][1] = c;
+          vectors[2][2] = 1.;
+          std::array<unsigned int, 3> order = {{0, 1, 2}};
+          if (values[order[1]] < values[order[2]])
+            std::swap(order[1], order[2]);
+          if (values[order[0]] < values[order[1]])
+            std::swap(order[0], order[1]);
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              result.values[i]  = values[order[i]];
+              result.vectors[i] = vectors[order[i]];
+            }
+          return result;
+        }
       const auto eig = eigenvectors(A);
       for (unsigned int i = 0; i < 3; ++i)
         {

@@ -12,6 +12,7 @@
 #include <scarp/nonlocal/nonlocal_averager.h>
 #include <scarp/nonlocal/parameters.h>
 #include <scarp/particles/property_layout.h>
+#include <scarp/postprocess/cliff_diagnostics.h>
 #include <scarp/postprocess/json_writer.h>
 #include <scarp/postprocess/statistics_file.h>
 #include <scarp/postprocess/vtu_output.h>
@@ -70,6 +71,35 @@ namespace scarp
       {
         return particles;
       }
+      /// The particles for writing an initial state that a scene file
+      /// cannot describe (tests: manufactured solutions, shifted lattices),
+      /// after setup() and before the first step. Call sort_particles()
+      /// after changing any location.
+      Particles::ParticleHandler<dim> &
+      particle_handler_for_initialisation()
+      {
+        return particles;
+      }
+      /// Sort the particles into cells and ranks after their locations were
+      /// changed through particle_handler_for_initialisation(), and measure
+      /// the initial state again (energies, largest speed for the first dt).
+      void
+      sort_particles()
+      {
+        particles.sort_particles_into_subdomains_and_cells();
+        particles.update_cached_numbers();
+        last_report = measure();
+        if (step == 0)
+          {
+            initial_energy =
+              last_report.kinetic_energy + last_report.gravitational_energy;
+            scale_of_energy = last_report.kinetic_energy;
+          }
+      }
+      /// The time step the next step will take (before clipping to the end
+      /// of a stage): min(<Maximum time step>, CFL h_min / (c_p + max |v|)).
+      double
+      stable_time_step() const;
       const particles::PropertyLayout<dim> &
       property_layout() const
       {
@@ -126,8 +156,6 @@ namespace scarp
 
       void
       seed_bodies();
-      double
-      stable_time_step() const;
       void
       advance(const Stage &stage);
       void
@@ -147,6 +175,13 @@ namespace scarp
                      const bool                  force);
       void
       refine_mesh();
+      /// Material points of the cliff bodies, gathered on rank 0.
+      std::vector<postprocess::CliffDiagnostics::Particle>
+      gather_cliff_points() const;
+      /// Write cliff_<tag>_particles.csv (rank 0); at "end" also the surface
+      /// profile and the diagnostics, which go into the summary.
+      void
+      cliff_snapshot(const std::string &tag);
 
       MPI_Comm                   communicator;
       SceneLists                 lists;
@@ -205,6 +240,12 @@ namespace scarp
       std::unique_ptr<postprocess::StatisticsFile> statistics;
       std::unique_ptr<postprocess::VtuOutput<dim>> vtu;
       postprocess::JsonObject                      stage_summaries;
+      postprocess::CliffDiagnostics                cliff_diagnostics;
+      postprocess::JsonObject                      cliff_summary;
+      const scenes::CliffProfile                  *cliff = nullptr;
+      double failure_speed      = 0.1;
+      double failure_time       = -1;
+      double damage_stage_start = -1;
     };
   } // namespace simulation
 } // namespace scarp
