@@ -50,7 +50,9 @@ namespace scarp
                              layout.names(),
                              layout.interpretations());
       DataOutBase::VtkFlags flags;
-      flags.time = time;
+      flags.time              = time;
+      flags.compression_level =
+        DataOutBase::VtkFlags::ZlibCompressionLevel::best_speed;
       data_out.set_flags(flags);
       const std::string name = data_out.write_vtu_with_pvtu_record(
         directory + "/", "particles", index, communicator, 5, 0);

@@ -150,11 +150,11 @@ namespace scarp
               if (momentum_only)
                 {
                   // The MUSL remap maps the point velocities only, also
-                  // with APIC: C is then the gradient of this remapped
-                  // field (grid_to_particles), and mapping C back here
-                  // would close a loop C -> grid -> C with gain one at a
-                  // point alone next to a nearly empty node, which grows
-                  // without bound once points cross into empty cells.
+                  // with APIC. C = grad v_grid^{n+1} is unbounded next to a
+                  // node of tiny mass (grad S_i does not vanish with S_i);
+                  // mapped here it would make the stress velocity unbounded
+                  // too, and APIC blew up as soon as points crossed into
+                  // empty cells (vibrating bar, rotating disk).
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       const double   w = shape.value[i] * m;
@@ -340,7 +340,8 @@ namespace scarp
           for (unsigned int d = 0; d < 3; ++d)
             report.angular_momentum[d] += m * l[d];
         }
-      report.max_speed = std::max(report.max_speed, v.norm());
+      // Squared here; StepReport::reduce takes the root.
+      report.max_speed = std::max(report.max_speed, v.norm_square());
       const materials::Material &material =
         *materials[static_cast<unsigned int>(p[layout.material_id])];
       const double *state = p + layout.state;
@@ -414,14 +415,7 @@ namespace scarp
                   if (apic)
                     {
                       v = v_grid;
-                      // With MUSL the affine matrix is taken from the
-                      // remapped velocity in the stress pass below: the
-                      // gradient of v_new is unbounded next to nodes of tiny
-                      // mass (grad S_i does not vanish with S_i), and C
-                      // carried into the next P2G would put it back on
-                      // the grid.
-                      if (update_stress)
-                        layout.set_matrix(p, layout.affine, grad_v);
+                      layout.set_matrix(p, layout.affine, grad_v);
                     }
                   else
                     v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
@@ -451,8 +445,6 @@ namespace scarp
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
                     L += outer_product(v_stress[i], shape.gradient[i]);
-                  if (apic && !update_positions_and_velocities)
-                    layout.set_matrix(p, layout.affine, L);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;

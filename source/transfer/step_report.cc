@@ -2,6 +2,7 @@
 
 #include <scarp/transfer/step_report.h>
 
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -57,9 +58,10 @@ namespace scarp
                         &n_outside,
                         &n_too_fast})
         *x = sums[k++];
+      // Ranks accumulate the squared speed (no root per point).
       std::vector<double> maxima = {max_speed, max_damage};
       Utilities::MPI::max(maxima, communicator, maxima);
-      max_speed  = maxima[0];
+      max_speed  = std::sqrt(maxima[0]);
       max_damage = maxima[1];
       if (n_failures() > 0)
         {

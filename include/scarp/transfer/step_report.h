@@ -35,7 +35,7 @@ namespace scarp
       std::array<double, 3> momentum{{0, 0, 0}};
       std::array<double, 3> angular_momentum{{0, 0, 0}};
       // Maxima (reduced with MPI_MAX).
-      double max_speed  = 0;
+      double max_speed  = 0; ///< largest |v| (|v|^2 before reduce())
       double max_damage = 0;
       // Failure counts (summed).
       double n_not_finite  = 0; ///< NaN or inf in velocity, F or stress
