@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace scarp
@@ -502,13 +503,34 @@ namespace scarp
       if (!averager || !stage.damage)
         return;
       TimerOutput::Scope scope(timer, "non-local damage");
+      // This rank's region: the bounding box of its locally owned cells.
+      // (GridTools::compute_mesh_predicate_bounding_box() at refinement
+      // level 1 reads past the last level of an unrefined mesh and
+      // crashed; at level 0 its merge is cubic in the number of coarse
+      // cells. One box is always a cover, which is all the averager needs.)
       if (local_boxes.empty())
-        local_boxes = GridTools::compute_mesh_predicate_bounding_box(
-          grid.triangulation(),
-          IteratorFilters::LocallyOwnedCell(),
-          1,
-          true,
-          4);
+        {
+          Point<dim> lower, upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = std::numeric_limits<double>::max();
+              upper[d] = std::numeric_limits<double>::lowest();
+            }
+          bool any = false;
+          for (const auto &cell : grid.triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                any = true;
+                for (const unsigned int v : cell->vertex_indices())
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                      upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+                    }
+              }
+          if (any)
+            local_boxes.emplace_back(std::make_pair(lower, upper));
+        }
       averager->compute(local_boxes,
                         damage_points.position,
                         damage_points.volume,
