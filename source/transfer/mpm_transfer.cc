@@ -1,10 +1,14 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/vector.h>
 
+#include <scarp/base/exceptions.h>
+#include <scarp/transfer/gimp_shape.h>
 #include <scarp/transfer/mpm_transfer.h>
 #include <scarp/transfer/q1_shape.h>
 
 #include <cmath>
+#include <map>
+#include <type_traits>
 
 namespace scarp
 {
@@ -35,6 +39,17 @@ namespace scarp
           for (unsigned int j = 0; j < dim; ++j)
             r[i] += s[i][j] * g[j];
         return r;
+      }
+
+      /// GIMP: half-width of a point's domain from its reference volume,
+      /// V0 = (2 l)^dim (the seeding lattice gives l = h / (2 n)), at most
+      /// h/2 (the patch holds nodes up to h + l <= 3h/2 away).
+      template <int dim>
+      double
+      gimp_half_width(const double V0, const double h)
+      {
+        const double side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
+        return std::min(0.5 * side, 0.5 * h);
       }
 
       /// Scratch of one cell's constitutive update for one material.
@@ -92,6 +107,65 @@ namespace scarp
                           &velocity_new[d],
                           &velocity_remapped[d]})
           v->reinit(mass);
+      patch_dofs.clear();
+      if (parameters.shape_functions == ShapeFunctions::gimp)
+        build_gimp_patches();
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::build_gimp_patches()
+    {
+      if (grid.adaptive_refinement)
+        throw ScarpError(
+          "Transfer: <Shape functions> = GIMP needs a mesh without hanging "
+          "nodes; switch off Mesh/Refinement/<Adaptive refinement>, or use "
+          "<Shape functions> = Q1.");
+      const double     h     = grid.minimum_cell_size();
+      const Point<dim> lower = grid.domain().get_boundary_points().first;
+      using Key              = std::array<long, dim>;
+      const auto key_of      = [&](const Point<dim> &x) {
+        Key k;
+        for (unsigned int d = 0; d < dim; ++d)
+          k[d] = std::lround((x[d] - lower[d]) / h);
+        return k;
+      };
+      // Vertex dofs of every cell this rank sees (owned and ghost).
+      std::map<Key, types::global_dof_index> node_dof;
+      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+        {
+          if (cell->is_artificial())
+            continue;
+          for (unsigned int d = 0; d < dim; ++d)
+            if (std::abs(cell->extent_in_direction(d) - h) > 1e-8 * h)
+              throw ScarpError(
+                "Transfer: <Shape functions> = GIMP needs a uniform mesh "
+                "(all cells of one size, no hanging nodes); this mesh has "
+                "cells of different sizes (initial or adaptive refinement). "
+                "Use <Shape functions> = Q1.");
+          for (const unsigned int v : cell->vertex_indices())
+            node_dof[key_of(cell->vertex(v))] = cell->vertex_dof_index(v, 0);
+        }
+      constexpr unsigned int n = GimpShape<dim>::n;
+      patch_dofs.assign(
+        grid.dof_handler().get_triangulation().n_active_cells() * n,
+        numbers::invalid_dof_index);
+      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const Key k0 = key_of(cell->vertex(0));
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              Key k = k0;
+              for (unsigned int d = 0; d < dim; ++d)
+                k[d] += GimpShape<dim>::offset(i, d);
+              const auto it = node_dof.find(k);
+              if (it != node_dof.end())
+                patch_dofs[cell->active_cell_index() * n + i] = it->second;
+            }
+        }
     }
 
 
@@ -102,13 +176,27 @@ namespace scarp
                                         const bool            momentum_only)
     {
       (void)dt;
-      mass = 0;
+      if (parameters.shape_functions == ShapeFunctions::gimp)
+        particles_to_grid_impl<GimpShape<dim>>(gravity, momentum_only);
+      else
+        particles_to_grid_impl<Q1Shape<dim>>(gravity, momentum_only);
+    }
+
+
+    template <int dim>
+    template <class Shape>
+    void
+    MpmTransfer<dim>::particles_to_grid_impl(const Tensor<1, dim> &gravity,
+                                             const bool momentum_only)
+    {
+      constexpr bool gimp = std::is_same_v<Shape, GimpShape<dim>>;
+      mass                = 0;
       for (unsigned int d = 0; d < dim; ++d)
         {
           momentum[d] = 0;
           force[d]    = 0;
         }
-      constexpr unsigned int n = Q1Shape<dim>::n;
+      constexpr unsigned int                  n = Shape::n;
       dealii::Vector<double> local_mass(n);
       std::array<dealii::Vector<double>, dim> local_momentum, local_force;
       for (unsigned int d = 0; d < dim; ++d)
@@ -117,7 +205,8 @@ namespace scarp
           local_force[d].reinit(n);
         }
       std::vector<types::global_dof_index> dofs(n);
-      Q1Shape<dim>                         shape;
+      Shape                                shape;
+      Point<dim>                           node[n];
       const bool apic = layout.has_affine;
 
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
@@ -129,6 +218,24 @@ namespace scarp
             continue;
           const double     h  = cell->extent_in_direction(0);
           const Point<dim> x0 = cell->vertex(0);
+          if constexpr (gimp)
+            {
+              const types::global_dof_index *patch =
+                patch_dofs.data() + cell->active_cell_index() * n;
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  dofs[i] = patch[i];
+                  for (unsigned int d = 0; d < dim; ++d)
+                    node[i][d] = x0[d] + h * Shape::offset(i, d);
+                }
+            }
+          else
+            {
+              cell->get_dof_indices(dofs);
+              if (apic)
+                for (unsigned int i = 0; i < n; ++i)
+                  node[i] = cell->vertex(i);
+            }
           local_mass          = 0;
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -139,7 +246,11 @@ namespace scarp
             {
               const double *p  = particle.get_properties().data();
               const auto    xi = particle.get_reference_location();
-              shape.evaluate(xi, h);
+              if constexpr (gimp)
+                shape.evaluate(
+                  xi, h, gimp_half_width<dim>(p[layout.reference_volume], h));
+              else
+                shape.evaluate(xi, h);
               const double m = p[layout.mass];
               const Tensor<1, dim> v =
                 layout.get_vector(p, layout.velocity);
@@ -183,7 +294,7 @@ namespace scarp
                   const double   w  = shape.value[i] * m;
                   Tensor<1, dim> vi = v;
                   if (apic)
-                    vi += C * (cell->vertex(i) - xp);
+                    vi += C * (node[i] - xp);
                   const Tensor<1, dim> f =
                     -volume * stress_times<dim>(sigma, shape.gradient[i]) +
                     w * acceleration;
@@ -195,7 +306,24 @@ namespace scarp
                     }
                 }
             }
-          cell->get_dof_indices(dofs);
+          if constexpr (gimp)
+            {
+              // Uniform mesh: no constraints; patch nodes outside the mesh
+              // (invalid) get nothing.
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  if (dofs[i] == numbers::invalid_dof_index)
+                    continue;
+                  mass(dofs[i]) += local_mass(i);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      momentum[d](dofs[i]) += local_momentum[d](i);
+                      if (!momentum_only)
+                        force[d](dofs[i]) += local_force[d](i);
+                    }
+                }
+              continue;
+            }
           const auto &constraints = grid.constraints();
           constraints.distribute_local_to_global(local_mass, dofs, mass);
           for (unsigned int d = 0; d < dim; ++d)
@@ -367,9 +495,41 @@ namespace scarp
       DamagePoints<dim>             *damage_points,
       const Tensor<1, dim>          &gravity)
     {
-      constexpr unsigned int n = Q1Shape<dim>::n;
+      if (parameters.shape_functions == ShapeFunctions::gimp)
+        grid_to_particles_impl<GimpShape<dim>>(dt,
+                                               update_positions_and_velocities,
+                                               update_stress,
+                                               stress_velocity,
+                                               report,
+                                               damage_points,
+                                               gravity);
+      else
+        grid_to_particles_impl<Q1Shape<dim>>(dt,
+                                             update_positions_and_velocities,
+                                             update_stress,
+                                             stress_velocity,
+                                             report,
+                                             damage_points,
+                                             gravity);
+    }
+
+
+    template <int dim>
+    template <class Shape>
+    void
+    MpmTransfer<dim>::grid_to_particles_impl(
+      const double                   dt,
+      const bool                     update_positions_and_velocities,
+      const bool                     update_stress,
+      const std::array<Vector, dim> &stress_velocity,
+      StepReport                    &report,
+      DamagePoints<dim>             *damage_points,
+      const Tensor<1, dim>          &gravity)
+    {
+      constexpr bool         gimp = std::is_same_v<Shape, GimpShape<dim>>;
+      constexpr unsigned int n    = Shape::n;
       std::vector<types::global_dof_index> dofs(n);
-      Q1Shape<dim>                         shape;
+      Shape                                shape;
       const double alpha = parameters.flip_fraction;
       const bool   apic  = layout.has_affine;
       const BoundingBox<dim> &domain = grid.domain();
@@ -385,10 +545,25 @@ namespace scarp
             continue;
           const double     h  = cell->extent_in_direction(0);
           const Point<dim> x0 = cell->vertex(0);
-          cell->get_dof_indices(dofs);
+          if constexpr (gimp)
+            {
+              const types::global_dof_index *patch =
+                patch_dofs.data() + cell->active_cell_index() * n;
+              for (unsigned int i = 0; i < n; ++i)
+                dofs[i] = patch[i];
+            }
+          else
+            cell->get_dof_indices(dofs);
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
+                if (gimp && dofs[i] == numbers::invalid_dof_index)
+                  {
+                    v_new[i][d]    = 0;
+                    v_old[i][d]    = 0;
+                    v_stress[i][d] = 0;
+                    continue;
+                  }
                 v_new[i][d]    = velocity_new[d](dofs[i]);
                 v_old[i][d]    = velocity_old[d](dofs[i]);
                 v_stress[i][d] = stress_velocity[d](dofs[i]);
@@ -400,7 +575,11 @@ namespace scarp
             {
               double    *p  = particle.get_properties().data();
               const auto xi = particle.get_reference_location();
-              shape.evaluate(xi, h);
+              if constexpr (gimp)
+                shape.evaluate(
+                  xi, h, gimp_half_width<dim>(p[layout.reference_volume], h));
+              else
+                shape.evaluate(xi, h);
               if (update_positions_and_velocities)
                 {
                   Tensor<1, dim> v_grid, dv;

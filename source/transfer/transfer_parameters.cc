@@ -34,6 +34,17 @@ namespace scarp
                         "Nodes whose mass is below this fraction of the mass "
                         "of a full cell of the densest material get zero "
                         "velocity.");
+      prm.declare_entry(
+        "Shape functions",
+        "Q1",
+        Patterns::Selection("Q1|GIMP"),
+        "Q1: the bilinear (trilinear) FE_Q(1) functions of the cell that "
+        "holds the point. GIMP: uniform generalized interpolation MPM, the "
+        "Q1 functions convolved with the point's domain, a box of "
+        "half-width h/(2 n) for n <Particles per cell> (taken from the "
+        "reference volume): smooth gradients, no cell-crossing noise, 3^dim "
+        "instead of 2^dim nodes per point. GIMP needs a uniform mesh "
+        "(no adaptive or initial refinement).");
       prm.leave_subsection();
     }
 
@@ -49,6 +60,9 @@ namespace scarp
       scheme        = prm.get("Update scheme") == "USL" ? UpdateScheme::usl :
                                                           UpdateScheme::musl;
       mass_cutoff   = prm.get_double("Small mass cutoff");
+      shape_functions = prm.get("Shape functions") == "GIMP"
+                          ? ShapeFunctions::gimp
+                          : ShapeFunctions::q1;
       prm.leave_subsection();
     }
   } // namespace transfer

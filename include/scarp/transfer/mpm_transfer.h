@@ -130,6 +130,25 @@ namespace scarp
       particles_to_grid(const double          dt,
                         const Tensor<1, dim> &gravity,
                         const bool            momentum_only);
+      /// P2G with the shape functions @p Shape (Q1Shape or GimpShape).
+      template <class Shape>
+      void
+      particles_to_grid_impl(const Tensor<1, dim> &gravity,
+                             const bool            momentum_only);
+      /// G2P with the shape functions @p Shape (Q1Shape or GimpShape).
+      template <class Shape>
+      void
+      grid_to_particles_impl(const double dt,
+                             const bool   update_positions_and_velocities,
+                             const bool   update_stress,
+                             const std::array<Vector, dim> &stress_velocity,
+                             StepReport                    &report,
+                             DamagePoints<dim>             *damage_points,
+                             const Tensor<1, dim>          &gravity);
+      /// GIMP: the dofs of the 4^dim-node patch of every locally owned cell
+      /// (invalid_dof_index outside the mesh). Needs a uniform mesh.
+      void
+      build_gimp_patches();
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
       void
@@ -156,6 +175,9 @@ namespace scarp
       double                                         mass_cutoff = 0;
       const Function<dim>                           *body_force  = nullptr;
       Tensor<1, dim>                                 last_gravity;
+
+      /// GIMP patches: 4^dim dofs per active cell index (empty with Q1).
+      std::vector<types::global_dof_index> patch_dofs;
 
       Vector                  mass;
       std::array<Vector, dim> momentum, force, velocity_old, velocity_new,

@@ -23,6 +23,13 @@ namespace scarp
       musl, ///< modified USL: remap particle momentum first, then update
     };
 
+    /// Shape functions of the transfers.
+    enum class ShapeFunctions
+    {
+      q1,   ///< FE_Q(1) of the cell that holds the point
+      gimp, ///< uniform GIMP on the 3^dim-node patch (uniform meshes only)
+    };
+
     /**
      * @brief Choices of the explicit MPM step: velocity transfer, update
      * scheme and the small-mass cutoff of the grid solve.
@@ -33,6 +40,7 @@ namespace scarp
       double           flip_fraction     = 0.99;
       UpdateScheme     scheme            = UpdateScheme::musl;
       double           mass_cutoff       = 1e-5;
+      ShapeFunctions   shape_functions   = ShapeFunctions::q1;
 
       static void
       declare_parameters(ParameterHandler &prm);
