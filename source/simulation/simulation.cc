@@ -86,6 +86,18 @@ namespace scarp
           prm.enter_subsection("Initial stress");
           Functions::ParsedFunction<dim>::declare_parameters(prm, 6);
           prm.leave_subsection();
+          prm.enter_subsection("Initial displacement");
+          Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+          prm.declare_entry(
+            "Enabled",
+            "false",
+            Patterns::Bool(),
+            "Seed the points displaced: a point of the lattice position X "
+            "starts at X + u(X) with F = I + grad u (difference quotients of "
+            "this function of x, y[, z]; X stays the reference position), "
+            "its stress from one elastic update with that F. For "
+            "manufactured solutions whose initial displacement is not zero.");
+          prm.leave_subsection();
           scenes::ShapeFactory<dim>::declare_parameters(prm);
           prm.leave_subsection();
         }
@@ -110,6 +122,19 @@ namespace scarp
                         "time t (for manufactured solutions). Its work is not "
                         "part of the energy balance.");
       prm.leave_subsection();
+      prm.leave_subsection();
+      prm.enter_subsection("Reference solution");
+      Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+      prm.declare_entry(
+        "Enabled",
+        "false",
+        Patterns::Bool(),
+        "Measure the error against this exact displacement u(X, t), a "
+        "function of the reference position (x, y[, z]) and time t: "
+        "e = sqrt(sum V0 |x - X - u(X,t)|^2 / sum V0) over all points, "
+        "written as the column reference_error of statistics.csv at every "
+        "statistics row and, with its maximum over those rows and the same "
+        "norm of u, to summary.json (reference_error).");
       prm.leave_subsection();
       prm.enter_subsection("Time");
       prm.declare_entry("CFL number",
@@ -221,6 +246,14 @@ namespace scarp
           body.stress = std::make_unique<Functions::ParsedFunction<dim>>(6);
           body.stress->parse_parameters(prm);
           prm.leave_subsection();
+          prm.enter_subsection("Initial displacement");
+          if (prm.get_bool("Enabled"))
+            {
+              body.displacement =
+                std::make_unique<Functions::ParsedFunction<dim>>(dim);
+              body.displacement->parse_parameters(prm);
+            }
+          prm.leave_subsection();
           try
             {
               if (prm.get("Shape") == "cliff")
@@ -267,6 +300,14 @@ namespace scarp
           body_force->parse_parameters(prm);
         }
       prm.leave_subsection();
+      prm.leave_subsection();
+      prm.enter_subsection("Reference solution");
+      if (prm.get_bool("Enabled"))
+        {
+          reference_displacement =
+            std::make_unique<Functions::ParsedFunction<dim>>(dim);
+          reference_displacement->parse_parameters(prm);
+        }
       prm.leave_subsection();
       prm.enter_subsection("Time");
       cfl           = prm.get_double("CFL number");
@@ -470,6 +511,94 @@ namespace scarp
           next_id += n;
         }
       particles.update_cached_numbers();
+      apply_initial_displacement();
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::apply_initial_displacement()
+    {
+      bool any = false;
+      for (const auto &body : bodies)
+        any = any || body.displacement;
+      if (!any)
+        return;
+      for (auto &m : materials)
+        m->set_inelastic_enabled(false, false);
+      for (auto &particle : particles)
+        {
+          double     *p = particle.get_properties().data();
+          const Body &body =
+            bodies[static_cast<unsigned int>(p[layout.body_id])];
+          if (!body.displacement)
+            continue;
+          const Point<dim> X(layout.get_vector(p, layout.reference_position));
+          Tensor<2, dim>   F = unit_symmetric_tensor<dim>();
+          Point<dim>       x = X;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              x[d] += body.displacement->value(X, d);
+              F[d] += body.displacement->gradient(X, d);
+            }
+          layout.set_matrix(p, layout.deformation_gradient, F);
+          particle.set_location(x);
+          Tensor<2, 3> F3;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              F3[i][j] = (i < dim && j < dim) ? F[i][j] : (i == j ? 1. : 0.);
+          SymmetricTensor<2, 3>    sigma  = layout.get_stress(p, layout.stress);
+          double                   stored = 0, driver = 0;
+          double                  *state = p + layout.state;
+          materials::MaterialBatch batch;
+          batch.n             = 1;
+          batch.dt            = 1.;
+          batch.delta_F       = &F3;
+          batch.F             = &F3;
+          batch.state         = &state;
+          batch.stress        = &sigma;
+          batch.stored_energy = &stored;
+          if (materials[body.material]->has_damage())
+            batch.damage_driver = &driver;
+          materials[body.material]->update(batch);
+          layout.set_stress(p, layout.stress, sigma);
+        }
+      particles.sort_particles_into_subdomains_and_cells();
+      particles.update_cached_numbers();
+    }
+
+
+    template <int dim>
+    double
+    Simulation<dim>::reference_error(double *norm) const
+    {
+      if (!reference_displacement)
+        return -1;
+      reference_displacement->set_time(current_time);
+      double sums[3] = {0, 0, 0};
+      for (const auto &particle : particles)
+        {
+          const double    *p = particle.get_properties().data();
+          const Point<dim> X(layout.get_vector(p, layout.reference_position));
+          const double     V0 = p[layout.reference_volume];
+          double           e2 = 0, u2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double u = reference_displacement->value(X, d);
+              const double e = particle.get_location()[d] - X[d] - u;
+              e2 += e * e;
+              u2 += u * u;
+            }
+          sums[0] += V0 * e2;
+          sums[1] += V0 * u2;
+          sums[2] += V0;
+        }
+      Utilities::MPI::sum(ArrayView<const double>(sums, 3),
+                          communicator,
+                          ArrayView<double>(sums, 3));
+      if (norm)
+        *norm = std::sqrt(sums[1] / std::max(sums[2], 1e-300));
+      return std::sqrt(sums[0] / std::max(sums[2], 1e-300));
     }
 
 
@@ -754,32 +883,42 @@ namespace scarp
       if (!statistics)
         return;
       const double material_dissipation = internal_work - r.stored_energy;
-      statistics->write_row({double(step),
-                             current_time,
-                             dt,
-                             double(current_stage),
-                             r.kinetic_energy,
-                             r.stored_energy,
-                             r.gravitational_energy,
-                             internal_work,
-                             damping_dissipation,
-                             boundary_dissipation,
-                             r.plastic_dissipation,
-                             r.damage_dissipation,
-                             material_dissipation,
-                             last_residual,
-                             r.momentum[0],
-                             r.momentum[1],
-                             r.momentum[2],
-                             r.angular_momentum[0],
-                             r.angular_momentum[1],
-                             r.angular_momentum[2],
-                             r.n_points,
-                             r.mass,
-                             r.max_speed,
-                             r.max_damage,
-                             r.damaged_volume,
-                             wall_clock.wall_time()});
+      std::vector<double> row({double(step),
+                               current_time,
+                               dt,
+                               double(current_stage),
+                               r.kinetic_energy,
+                               r.stored_energy,
+                               r.gravitational_energy,
+                               internal_work,
+                               damping_dissipation,
+                               boundary_dissipation,
+                               r.plastic_dissipation,
+                               r.damage_dissipation,
+                               material_dissipation,
+                               last_residual,
+                               r.momentum[0],
+                               r.momentum[1],
+                               r.momentum[2],
+                               r.angular_momentum[0],
+                               r.angular_momentum[1],
+                               r.angular_momentum[2],
+                               r.n_points,
+                               r.mass,
+                               r.max_speed,
+                               r.max_damage,
+                               r.damaged_volume,
+                               wall_clock.wall_time()});
+      if (reference_displacement)
+        {
+          double       norm    = 0;
+          const double e       = reference_error(&norm);
+          reference_error_last = e;
+          reference_error_max  = std::max(reference_error_max, e);
+          reference_norm_max   = std::max(reference_norm_max, norm);
+          row.push_back(e);
+        }
+      statistics->write_row(row);
     }
 
 
@@ -848,6 +987,16 @@ namespace scarp
       summary.add("max_damage", last_report.max_damage);
       summary.add("first_damage_time", first_damage_time);
       summary.add("points_removed", n_removed);
+      if (reference_displacement)
+        {
+          postprocess::JsonObject ref;
+          ref.add("final", reference_error_last);
+          ref.add("max", reference_error_max);
+          ref.add("norm_max", reference_norm_max);
+          ref.add("relative_max",
+                  reference_error_max / std::max(reference_norm_max, 1e-300));
+          summary.add("reference_error", ref);
+        }
       summary.write(output_directory + "/summary.json");
     }
 
@@ -888,34 +1037,37 @@ namespace scarp
             << std::endl;
       vtu = std::make_unique<postprocess::VtuOutput<dim>>(output_directory,
                                                           communicator);
+      std::vector<std::string> columns{"step",
+                                       "time",
+                                       "dt",
+                                       "stage",
+                                       "kinetic_energy",
+                                       "strain_energy",
+                                       "gravitational_energy",
+                                       "internal_work",
+                                       "damping_dissipation",
+                                       "boundary_dissipation",
+                                       "plastic_dissipation",
+                                       "damage_dissipation",
+                                       "material_dissipation",
+                                       "energy_residual",
+                                       "momentum_x",
+                                       "momentum_y",
+                                       "momentum_z",
+                                       "angular_momentum_x",
+                                       "angular_momentum_y",
+                                       "angular_momentum_z",
+                                       "material_points",
+                                       "mass",
+                                       "max_speed",
+                                       "max_damage",
+                                       "damaged_volume",
+                                       "wall_time"};
+      if (reference_displacement)
+        columns.push_back("reference_error");
       statistics = std::make_unique<postprocess::StatisticsFile>(
         output_directory + "/statistics.csv",
-        std::vector<std::string>{"step",
-                                 "time",
-                                 "dt",
-                                 "stage",
-                                 "kinetic_energy",
-                                 "strain_energy",
-                                 "gravitational_energy",
-                                 "internal_work",
-                                 "damping_dissipation",
-                                 "boundary_dissipation",
-                                 "plastic_dissipation",
-                                 "damage_dissipation",
-                                 "material_dissipation",
-                                 "energy_residual",
-                                 "momentum_x",
-                                 "momentum_y",
-                                 "momentum_z",
-                                 "angular_momentum_x",
-                                 "angular_momentum_y",
-                                 "angular_momentum_z",
-                                 "material_points",
-                                 "mass",
-                                 "max_speed",
-                                 "max_damage",
-                                 "damaged_volume",
-                                 "wall_time"},
+        columns,
         Utilities::MPI::this_mpi_process(communicator) == 0);
       write_statistics(last_report, stages.front());
       write_output();

@@ -130,6 +130,12 @@ namespace scarp
       {
         return grid;
       }
+      /// With a <Reference solution>: the volume-weighted L2 error of the
+      /// point displacements against it at the current time,
+      /// sqrt(sum V0 |x - X - u(X,t)|^2 / sum V0) (collective), and the
+      /// same norm of u(X,t) itself in @p norm if given. -1 without one.
+      double
+      reference_error(double *norm = nullptr) const;
       /// Cumulative energy bookkeeping.
       double
       energy_residual() const
@@ -152,7 +158,14 @@ namespace scarp
         std::unique_ptr<scenes::CliffProfile> cliff;
         std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
         std::unique_ptr<Functions::ParsedFunction<dim>> stress;
+        std::unique_ptr<Functions::ParsedFunction<dim>> displacement;
       };
+
+      /// Apply the bodies' <Initial displacement>: points move to X + u(X),
+      /// F = I + grad u (difference quotients), stress from one material
+      /// update with dF = F (elastic).
+      void
+      apply_initial_displacement();
 
       void
       seed_bodies();
@@ -207,6 +220,9 @@ namespace scarp
 
       Tensor<1, dim> gravity;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
+      std::unique_ptr<Functions::ParsedFunction<dim>> reference_displacement;
+      double reference_error_max = 0, reference_norm_max = 0,
+             reference_error_last        = -1;
       double         cfl               = 0.5;
       double         max_time_step     = 1e30;
       std::string    output_directory  = "output";
