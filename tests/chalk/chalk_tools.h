@@ -1,0 +1,329 @@
+// Shared pieces of the chalk damage tests (doc/damage_verification.md):
+// scene text for a chalk material, building a scene on a chosen
+// communicator, gathering the material points, and a case dispatcher.
+#ifndef scarp_tests_chalk_chalk_tools_h
+#define scarp_tests_chalk_chalk_tools_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <scarp/base/parameter_tools.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/simulation/scene_lists.h>
+#include <scarp/simulation/simulation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace scarp_chalk_test
+{
+  using namespace dealii;
+  using namespace scarp;
+
+  /// A number as scene text, without loss.
+  inline std::string
+  num(const double x)
+  {
+    std::ostringstream o;
+    o << std::setprecision(17) << x;
+    return o.str();
+  }
+
+  /// "a, b[, c]" from numbers.
+  inline std::string
+  list(const std::vector<double> &x)
+  {
+    std::string s;
+    for (const double v : x)
+      s += (s.empty() ? "" : ", ") + num(v);
+    return s;
+  }
+
+  /// Print on rank 0 of MPI_COMM_WORLD.
+  inline std::ostream &
+  out()
+  {
+    static std::ostringstream sink;
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      return std::cout;
+    sink.str("");
+    return sink;
+  }
+
+  /// Fail the test (non-zero exit on all ranks) unless @p condition.
+  inline void
+  check(const bool condition, const std::string &what)
+  {
+    const bool all = Utilities::MPI::min(condition ? 1 : 0, MPI_COMM_WORLD);
+    out() << (all ? "  ok:   " : "  FAIL: ") << what << std::endl;
+    if (!all)
+      {
+        MPI_Finalize();
+        std::exit(1);
+      }
+  }
+
+  /// Parameters of a chalk material (Joss Bay defaults, design note
+  /// chalk-model.md section 5).
+  struct ChalkText
+  {
+    double      density             = 1700;
+    double      young               = 1e9;
+    double      poisson             = 0.24;
+    double      cohesion            = 1e6;
+    double      friction_angle      = 50;
+    double      dilation_angle      = 0;
+    double      damage_angle        = 60;
+    double      initiation_stress   = 20e3;
+    double      ductility           = 5;
+    double      characteristic_time = 1;
+    double      length_scale        = 0.18;
+    std::string weight              = "bell";
+    double      r_t                 = 1e-9;
+    double      r_c                 = 1e-2;
+    double      r_g                 = 5e-3;
+
+    std::string
+    text(const std::string &name) const
+    {
+      return "subsection Material " + name +
+             "\n  set Model = chalk\n  set Density = " + num(density) +
+             "\n  subsection Elasticity\n    set Young's modulus = " +
+             num(young) + "\n    set Poisson's ratio = " + num(poisson) +
+             "\n  end\n  subsection Mohr-Coulomb\n    set Cohesion = " +
+             num(cohesion) +
+             "\n    set Friction angle = " + num(friction_angle) +
+             "\n    set Dilation angle = " + num(dilation_angle) +
+             "\n  end\n  subsection Damage\n    set Damage angle = " +
+             num(damage_angle) +
+             "\n    set Initiation stress = " + num(initiation_stress) +
+             "\n    set Ductility = " + num(ductility) +
+             "\n    set Characteristic time = " + num(characteristic_time) +
+             "\n    set Length scale = " + num(length_scale) +
+             "\n    set Nonlocal weight = " + weight +
+             "\n    set Residual tensile ratio = " + num(r_t) +
+             "\n    set Residual compressive ratio = " + num(r_c) +
+             "\n    set Residual shear ratio = " + num(r_g) + "\n  end\nend\n";
+    }
+  };
+
+  /// Mesh subsection; @p faces: Left, Right, Bottom, Top.
+  inline std::string
+  mesh_text(const std::vector<double>      &lower,
+            const std::vector<double>      &upper,
+            const double                    h,
+            const std::vector<std::string> &faces,
+            const double                    friction = 0.5)
+  {
+    static const char *names[] = {"Left", "Right", "Bottom", "Top"};
+    std::string s = "subsection Mesh\n  set Lower corner = " + list(lower) +
+                    "\n  set Upper corner = " + list(upper) +
+                    "\n  set Cell size = " + num(h) +
+                    "\n  subsection Boundary conditions\n";
+    for (unsigned int f = 0; f < faces.size(); ++f)
+      s += "    set " + std::string(names[f]) + " = " + faces[f] + "\n";
+    return s + "    set Friction coefficient = " + num(friction) +
+           "\n  end\nend\n";
+  }
+
+  /// Body subsection: a box of the named material.
+  inline std::string
+  box_body_text(const std::string         &name,
+                const std::string         &material,
+                const std::vector<double> &corners,
+                const unsigned int         ppc,
+                const std::string         &velocity  = "0; 0",
+                const std::string         &constants = "")
+  {
+    return "subsection Body " + name + "\n  set Material = " + material +
+           "\n  set Particles per cell = " + std::to_string(ppc) +
+           "\n  set Shape = box\n  set Box corners = " + list(corners) +
+           "\n  subsection Initial velocity\n    set Function constants = " +
+           constants + "\n    set Function expression = " + velocity +
+           "\n  end\nend\n";
+  }
+
+  /// A pre-damaged box region.
+  inline std::string
+  region_text(const std::string &name, const std::vector<double> &corners)
+  {
+    return "subsection Pre-damaged region " + name +
+           "\n  set Shape = box\n  set Box corners = " + list(corners) +
+           "\nend\n";
+  }
+
+  /// A stage subsection.
+  inline std::string
+  stage_text(const std::string &name,
+             const double       end_time,
+             const bool         plasticity  = true,
+             const bool         damage      = true,
+             const std::string &damping     = "none",
+             const double       coefficient = 0)
+  {
+    return "subsection Stage " + name + "\n  set End time = " + num(end_time) +
+           "\n  set Plasticity = " + (plasticity ? "true" : "false") +
+           "\n  set Damage = " + (damage ? "true" : "false") +
+           "\n  set Damping type = " + damping +
+           "\n  set Damping = " + num(coefficient) + "\nend\n";
+  }
+
+  /// Build a simulation from parameter text on @p communicator (the same two
+  /// passes as the scarp command line) and set it up. With MPI_COMM_SELF
+  /// every rank builds its own serial copy of the scene. @p tag keeps the
+  /// scene files of different scenes apart.
+  template <int dim>
+  std::unique_ptr<simulation::Simulation<dim>>
+  make_scene_on(const std::string &text,
+                const MPI_Comm     communicator,
+                const std::string &tag = "scene")
+  {
+    const std::string filename =
+      "chalk_" + tag + "_" +
+      std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) + ".prm";
+    {
+      std::ofstream file(filename);
+      file << text;
+    }
+    const auto       lists = simulation::SceneLists::read(filename);
+    ParameterHandler prm;
+    simulation::Simulation<dim>::declare_parameters(prm, lists);
+    ParameterTools::parse_file(prm, filename);
+    auto sim =
+      std::make_unique<simulation::Simulation<dim>>(communicator, lists);
+    sim->parse_parameters(prm);
+    sim->setup();
+    return sim;
+  }
+
+  /// What the tests look at of one material point.
+  template <int dim>
+  struct PointRecord
+  {
+    Point<dim>            reference;
+    Point<dim>            position;
+    double                reference_volume = 0;
+    double                damage           = 0;
+    double                kappa            = 0;
+    double                plastic          = 0; ///< per reference volume
+    double                dissipated       = 0; ///< damage, per ref. volume
+    SymmetricTensor<2, 3> stress;
+  };
+
+  /// All material points of the simulation, gathered on every rank of its
+  /// communicator and sorted by reference position (x, then y).
+  template <int dim>
+  std::vector<PointRecord<dim>>
+  gather_points(const simulation::Simulation<dim> &sim)
+  {
+    constexpr unsigned int n_values = 2 * dim + 5 + 6;
+    const auto            &layout   = sim.property_layout();
+    std::vector<double>    local;
+    for (const auto &particle : sim.particle_handler())
+      {
+        const double *p = particle.get_properties().data();
+        const auto   &m =
+          sim.material(static_cast<unsigned int>(p[layout.material_id]));
+        double plastic = 0, damage = 0;
+        m.dissipated_energy(p + layout.state, plastic, damage);
+        for (unsigned int d = 0; d < dim; ++d)
+          local.push_back(p[layout.reference_position + d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          local.push_back(particle.get_location()[d]);
+        local.push_back(p[layout.reference_volume]);
+        local.push_back(m.damage(p + layout.state));
+        local.push_back(
+          m.has_damage() ? p[layout.state + materials::Chalk::kappa] : 0.);
+        local.push_back(plastic);
+        local.push_back(damage);
+        const SymmetricTensor<2, 3> s = layout.get_stress(p, layout.stress);
+        for (unsigned int k = 0; k < 6; ++k)
+          local.push_back(s.access_raw_entry(k));
+      }
+    const MPI_Comm comm =
+      sim.background_grid().dof_handler().get_communicator();
+    const auto                    all = Utilities::MPI::all_gather(comm, local);
+    std::vector<PointRecord<dim>> points;
+    for (const auto &chunk : all)
+      for (std::size_t k = 0; k + n_values <= chunk.size(); k += n_values)
+        {
+          PointRecord<dim> r;
+          const double    *c = chunk.data() + k;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              r.reference[d] = c[d];
+              r.position[d]  = c[dim + d];
+            }
+          r.reference_volume = c[2 * dim];
+          r.damage           = c[2 * dim + 1];
+          r.kappa            = c[2 * dim + 2];
+          r.plastic          = c[2 * dim + 3];
+          r.dissipated       = c[2 * dim + 4];
+          for (unsigned int j = 0; j < 6; ++j)
+            r.stress.access_raw_entry(j) = c[2 * dim + 5 + j];
+          points.push_back(r);
+        }
+    std::sort(points.begin(),
+              points.end(),
+              [](const PointRecord<dim> &a, const PointRecord<dim> &b) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (a.reference[d] != b.reference[d])
+                    return a.reference[d] < b.reference[d];
+                return false;
+              });
+    return points;
+  }
+
+  /// Run the named case of @p cases (argv[1]); all of them without one.
+  /// Further arguments go to the case.
+  inline int
+  run_cases(
+    int    argc,
+    char **argv,
+    const std::map<std::string,
+                   std::function<void(const std::vector<std::string> &)>>
+      &cases)
+  {
+    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    try
+      {
+        std::vector<std::string> args;
+        for (int k = 2; k < argc; ++k)
+          args.push_back(argv[k]);
+        if (argc > 1)
+          {
+            const auto c = cases.find(argv[1]);
+            if (c == cases.end())
+              {
+                std::cerr << "unknown case " << argv[1] << std::endl;
+                return 1;
+              }
+            c->second(args);
+          }
+        else
+          for (const auto &[name, f] : cases)
+            {
+              out() << "== " << name << std::endl;
+              f(args);
+            }
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "exception: " << e.what() << std::endl;
+        return 1;
+      }
+    return 0;
+  }
+} // namespace scarp_chalk_test
+
+#endif
