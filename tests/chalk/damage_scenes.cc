@@ -144,8 +144,8 @@ namespace
           << " of the released energy (final " << R.back()
           << ", largest positive " << r.most_positive
           << "); max |internal work - strain - plastic - damage| " << r.material
-          << " J/m = " << r.material / r.dissipated
-          << " of the dissipation; wall " << r.wall << " s" << std::endl;
+          << " J/m = " << r.material / r.damage
+          << " of the damage dissipation; wall " << r.wall << " s" << std::endl;
     return r;
   }
 
@@ -166,18 +166,21 @@ namespace
     check(flip.monotone,
           "plastic and damage dissipation never decrease (largest drop " +
             std::to_string(flip.worst_drop) + " J/m)");
-    // Measured 2.7e-4 of the released energy; 2e-3 leaves a factor 7 for
-    // other platforms, and is 20 times below the 1 % that a missing
-    // damage term would cost here (the damage dissipation is 0.2 % of the
-    // released energy, the plastic dissipation 9 %).
-    check(flip.residual <= 2e-3 * flip.released,
-          "FLIP 1: |energy_residual| <= 0.2 % of the released energy");
-    // The damage release -dpsi/dd (d_n+1 - d_n) is evaluated at the end-of-
-    // step strain: first order in the strain step (materials_chalk_softening
-    // 0.1-0.8 %). Measured 8e-4; bound 1 % of the dissipation.
-    check(flip.material <= 0.01 * flip.dissipated,
+    // Measured 2.7e-4 to 3.3e-4 of the released energy (O(dt));
+    // bound 1e-3. The damage dissipation is only 0.2 % of the released
+    // energy here (chalk: g_f ~ 1 J/m^3), so this bound does not resolve
+    // the damage term; the material balance below does.
+    check(flip.residual <= 1e-3 * flip.released,
+          "FLIP 1: |energy_residual| <= 0.1 % of the released energy");
+    // Material balance: the stress work not stored must be what plasticity
+    // and damage booked. The damage release -dpsi/dd (d_n+1 - d_n) is taken
+    // at the end-of-step strain, first order in the strain step
+    // (materials_chalk_softening: 0.1-0.8 %). Measured 3.8-4.3 % of the damage
+    // dissipation (0.08 % of the total); bound 10 % of the damage
+    // dissipation, so a missing or doubled damage term (100 %) fails.
+    check(flip.material <= 0.1 * flip.damage,
           "internal work = strain energy + plastic + damage dissipation "
-          "within 1 % of the dissipation");
+          "within 10 % of the damage dissipation");
 
     // The Joss Bay transfer, FLIP 0.99: its 1 % PIC share removes kinetic
     // energy (the spread of the point velocities about the grid velocity)
@@ -186,11 +189,12 @@ namespace
     const EnergyRun blend = run_overhang(t_end, 0.99);
     check(blend.non_negative && blend.monotone,
           "FLIP 0.99: dissipations >= 0 and non-decreasing");
-    check(blend.most_positive <= 2e-3 * blend.released,
-          "FLIP 0.99: the residual is a loss (never above +0.2 % of the "
+    check(blend.most_positive <= 1e-3 * blend.released,
+          "FLIP 0.99: the residual is a loss (never above +0.1 % of the "
           "released energy)");
-    check(blend.material <= 0.01 * blend.dissipated,
-          "FLIP 0.99: material balance within 1 % of the dissipation");
+    check(blend.material <= 0.1 * blend.damage,
+          "FLIP 0.99: material balance within 10 % of the damage "
+          "dissipation");
   }
 
   /// Points with a non-finite position, stress or damage.
