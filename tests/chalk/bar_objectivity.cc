@@ -16,11 +16,11 @@
 //    elastic material 1e6 times denser and stiffer than chalk (same wave
 //    speed, same time step; <Small mass cutoff> scaled to stay 1e-5 of a
 //    chalk cell) start at -+v0 and keep that speed (the bar changes it by
-//    < 1e-3); the bar starts with the matching linear velocity, so the
-//    exact solution is the homogeneous strain v0 t / (L/2), without waves,
-//    until the middle softens. A scene can prescribe no moving boundary;
-//    a body force ramp (force control) lets the bar snap and ring, and the
-//    ringing breaks the bar elsewhere;
+//    ~ 0.2 %: impulse of the bar force / grip momentum); the bar starts with
+//    the matching linear velocity, so the exact solution is the homogeneous
+//    strain v0 t / (L/2), without waves, until the middle softens. A scene can
+//    prescribe no moving boundary; a body force ramp (force control) lets the
+//    bar snap and ring, and the ringing breaks the bar elsewhere;
 //  * v0 such that the weak middle reaches sigma_weak at T = 5 L / c (five
 //    wave transits, quasi-static); the run ends at 5 T, when the band has
 //    stopped dissipating (the study shows G changing by 2 % from 3 T to
