@@ -57,6 +57,16 @@ namespace scarp
                         Patterns::Double(0., 1.),
                         "Cells holding a point whose damage exceeds this (or "
                         "next to such a cell) are refined.");
+      prm.declare_entry("Initial levels",
+                        "0",
+                        Patterns::Integer(0, 6),
+                        "Refine the cells inside <Initial region> this many "
+                        "times before the bodies are seeded.");
+      prm.declare_entry("Initial region",
+                        dim == 2 ? "0, 0, 0, 0" : "0, 0, 0, 0, 0, 0",
+                        *ParameterTools::double_list(2 * dim),
+                        "Box (lower corner, then upper corner) refined at "
+                        "set-up, see <Initial levels>.");
       prm.declare_entry("Interval",
                         "20",
                         Patterns::Integer(1),
@@ -100,6 +110,20 @@ namespace scarp
       max_refinement_level    = prm.get_integer("Maximum level");
       refinement_damage_limit = prm.get_double("Damage limit");
       refinement_interval     = prm.get_integer("Interval");
+      initial_levels          = prm.get_integer("Initial levels");
+      {
+        const auto  c = ParameterTools::get_doubles(prm, "Initial region", 2 * dim);
+        Point<dim> a, b;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            a[d] = c[d];
+            b[d] = c[dim + d];
+          }
+        initial_region = BoundingBox<dim>(std::make_pair(a, b));
+      }
+      if (initial_levels > max_refinement_level && adaptive_refinement)
+        throw ScarpError("Mesh/Refinement: <Initial levels> exceeds <Maximum "
+                         "level>.");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -118,6 +142,14 @@ namespace scarp
                                                 box.get_boundary_points().first,
                                                 box.get_boundary_points().second,
                                                 /*colorize=*/true);
+      for (unsigned int level = 0; level < initial_levels; ++level)
+        {
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned() &&
+                initial_region.point_inside(cell->center()))
+              cell->set_refine_flag();
+          tria.execute_coarsening_and_refinement();
+        }
     }
 
 

@@ -827,7 +827,10 @@ namespace scarp
                     grid.max_refinement_level)
                   cell->set_refine_flag();
               }
-            else if (cell->level() > 0)
+            else if (cell->level() > 0 &&
+                     !(static_cast<unsigned int>(cell->level()) <=
+                         grid.initial_levels &&
+                       grid.initial_region.point_inside(cell->center())))
               cell->set_coarsen_flag();
           }
       // A ring of refined cells around the damaged ones.

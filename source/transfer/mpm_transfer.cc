@@ -41,15 +41,27 @@ namespace scarp
         return r;
       }
 
-      /// GIMP: half-width of a point's domain from its reference volume,
+      /// GIMP: half-widths of a point's domain from its reference volume,
       /// V0 = (2 l)^dim (the seeding lattice gives l = h / (2 n)), at most
-      /// h/2 (the patch holds nodes up to h + l <= 3h/2 away).
+      /// h/2 (the patch holds nodes up to h + l <= 3h/2 away), and clipped
+      /// to the mesh box: a domain never reaches past the boundary, so
+      /// that at the boundary the weights become those of Q1 and a point
+      /// next to a fixed face does not keep moving through it.
       template <int dim>
-      double
-      gimp_half_width(const double V0, const double h)
+      void
+      gimp_half_width(const double            V0,
+                      const double            h,
+                      const Point<dim>       &x,
+                      const BoundingBox<dim> &box,
+                      double (&l)[dim])
       {
         const double side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
-        return std::min(0.5 * side, 0.5 * h);
+        const double l0   = std::min(0.5 * side, 0.5 * h);
+        for (unsigned int d = 0; d < dim; ++d)
+          l[d] = std::max(0.,
+                          std::min({l0,
+                                    x[d] - box.lower_bound(d),
+                                    box.upper_bound(d) - x[d]}));
       }
 
       /// Scratch of one cell's constitutive update for one material.
@@ -247,8 +259,15 @@ namespace scarp
               const double *p  = particle.get_properties().data();
               const auto    xi = particle.get_reference_location();
               if constexpr (gimp)
-                shape.evaluate(
-                  xi, h, gimp_half_width<dim>(p[layout.reference_volume], h));
+                {
+                  double l[dim];
+                  gimp_half_width<dim>(p[layout.reference_volume],
+                                       h,
+                                       x0 + h * xi,
+                                       grid.domain(),
+                                       l);
+                  shape.evaluate(xi, h, l);
+                }
               else
                 shape.evaluate(xi, h);
               const double m = p[layout.mass];
@@ -360,10 +379,18 @@ namespace scarp
           const double m = mass.local_element(k);
           if (!(m > mass_cutoff))
             {
+              // A nearly empty node keeps the (bounded) mass-weighted
+              // velocity of its points and falls with gravity, but takes no
+              // internal force: f/m is what becomes unbounded as m -> 0.
+              // Zeroing its velocity instead would shear every point near
+              // it (a uniform motion would create stress).
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  velocity_old[d].local_element(k) = 0;
-                  velocity_new[d].local_element(k) = 0;
+                  const double v = m > 0 ? momentum[d].local_element(k) / m : 0.;
+                  velocity_old[d].local_element(k) = v;
+                  velocity_new[d].local_element(k) =
+                    m > 0 ? v + dt * gravity_for_empty_nodes[d] : 0.;
+                  force[d].local_element(k) = 0;
                 }
               continue;
             }
@@ -426,7 +453,7 @@ namespace scarp
           const double m = mass.local_element(k);
           for (unsigned int d = 0; d < dim; ++d)
             velocity_remapped[d].local_element(k) =
-              (m > mass_cutoff) ? momentum[d].local_element(k) / m : 0.;
+              (m > 0) ? momentum[d].local_element(k) / m : 0.;
         }
       std::array<Vector *, dim> ptr;
       for (unsigned int d = 0; d < dim; ++d)
@@ -435,6 +462,7 @@ namespace scarp
       // counted in the solve already.
       (void)report;
       grid.boundary_conditions().apply(mass, ptr);
+      mass.update_ghost_values();
       for (unsigned int d = 0; d < dim; ++d)
         {
           grid.constraints().distribute(velocity_remapped[d]);
@@ -535,6 +563,7 @@ namespace scarp
       const BoundingBox<dim> &domain = grid.domain();
       std::vector<Batch<dim>> batches(materials.size());
       Tensor<1, dim>          v_new[n], v_old[n], v_stress[n];
+      bool                    empty[n];
 
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
         {
@@ -554,6 +583,14 @@ namespace scarp
             }
           else
             cell->get_dof_indices(dofs);
+          // A node no point gives mass to (a point on a cell edge has zero
+          // weight but a non-zero gradient there) knows no velocity; it takes
+          // part in gradients with the point's own interpolated velocity,
+          // which keeps sum_i grad S_i = 0 and uniform motion strain-free.
+          for (unsigned int i = 0; i < n; ++i)
+            empty[i] = dofs[i] != numbers::invalid_dof_index &&
+                       mass(dofs[i]) == 0. &&
+                       !grid.constraints().is_constrained(dofs[i]);
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
@@ -576,8 +613,12 @@ namespace scarp
               double    *p  = particle.get_properties().data();
               const auto xi = particle.get_reference_location();
               if constexpr (gimp)
-                shape.evaluate(
-                  xi, h, gimp_half_width<dim>(p[layout.reference_volume], h));
+                {
+                  double l[dim];
+                  gimp_half_width<dim>(
+                    p[layout.reference_volume], h, x0 + h * xi, domain, l);
+                  shape.evaluate(xi, h, l);
+                }
               else
                 shape.evaluate(xi, h);
               if (update_positions_and_velocities)
@@ -588,8 +629,11 @@ namespace scarp
                     {
                       v_grid += shape.value[i] * v_new[i];
                       dv += shape.value[i] * (v_new[i] - v_old[i]);
-                      grad_v += outer_product(v_new[i], shape.gradient[i]);
                     }
+                  for (unsigned int i = 0; i < n; ++i)
+                    if (!empty[i])
+                      grad_v +=
+                        outer_product(v_new[i] - v_grid, shape.gradient[i]);
                   Tensor<1, dim> v;
                   if (apic)
                     {
@@ -621,9 +665,14 @@ namespace scarp
                 }
               if (update_stress)
                 {
+                  Tensor<1, dim> v_point;
+                  for (unsigned int i = 0; i < n; ++i)
+                    v_point += shape.value[i] * v_stress[i];
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
-                    L += outer_product(v_stress[i], shape.gradient[i]);
+                    if (!empty[i])
+                      L += outer_product(v_stress[i] - v_point,
+                                         shape.gradient[i]);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;
@@ -634,6 +683,19 @@ namespace scarp
                     dF * layout.get_matrix(p, layout.deformation_gradient);
                   layout.set_matrix(p, layout.deformation_gradient, F);
                   const double J = determinant(F);
+                  if (!std::isfinite(J))
+                    {
+                      // Nothing sensible can be computed from it; the step
+                      // is reported and the run stops collectively.
+                      report.n_not_finite += 1;
+                      if (!report.has_offender)
+                        {
+                          report.has_offender = true;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            report.offender[d] = particle.get_location()[d];
+                        }
+                      continue;
+                    }
                   if (!(J > 0))
                     {
                       report.n_inverted += std::isfinite(J) ? 1 : 0;
@@ -692,7 +754,25 @@ namespace scarp
                   b.driver.resize(b.F.size());
                   batch.damage_driver = b.driver.data();
                 }
-              material.update(batch);
+              try
+                {
+                  material.update(batch);
+                }
+              catch (...)
+                {
+                  // A failed constitutive update (e.g. no convergence on a
+                  // garbage state) is reported like a non-finite stress:
+                  // the run then stops on every rank with the message.
+                  report.n_not_finite += batch.n;
+                  for (auto &s : b.stress)
+                    s = SymmetricTensor<2, 3>();
+                  if (!report.has_offender && !b.position.empty())
+                    {
+                      report.has_offender = true;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        report.offender[d] = b.position[0][d];
+                    }
+                }
               for (unsigned int k = 0; k < batch.n; ++k)
                 {
                   double                      *p = b.properties[k];
@@ -740,7 +820,8 @@ namespace scarp
                            DamagePoints<dim>    *damage_points)
     {
       StepReport report;
-      last_gravity = gravity;
+      last_gravity            = gravity;
+      gravity_for_empty_nodes = gravity;
       if (damage_points)
         damage_points->clear();
       particles_to_grid(dt, gravity, false);

@@ -49,6 +49,11 @@ namespace scarp
       {
         return tria;
       }
+      const parallel::distributed::Triangulation<dim> &
+      triangulation() const
+      {
+        return tria;
+      }
       const DoFHandler<dim> &
       dof_handler() const
       {
@@ -105,6 +110,11 @@ namespace scarp
       {
         return cell_size / (1u << level);
       }
+
+      /// Refinement levels applied at set-up inside a box (a priori
+      /// refinement, e.g. around a tension crack).
+      unsigned int     initial_levels = 0;
+      BoundingBox<dim> initial_region;
 
       /// Adaptive refinement settings.
       bool         adaptive_refinement     = false;

@@ -175,6 +175,7 @@ namespace scarp
       double                                         mass_cutoff = 0;
       const Function<dim>                           *body_force  = nullptr;
       Tensor<1, dim>                                 last_gravity;
+      Tensor<1, dim>                                 gravity_for_empty_nodes;
 
       /// GIMP patches: 4^dim dofs per active cell index (empty with Q1).
       std::vector<types::global_dof_index> patch_dofs;
