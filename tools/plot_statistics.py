@@ -37,6 +37,7 @@ def main():
         ("strain_energy", "strain", None),
         ("internal_work", "internal work", None),
         ("damping_dissipation", "damping", None),
+        ("boundary_dissipation", "boundary (friction)", None),
         ("plastic_dissipation", "plastic dissipation", None),
         ("damage_dissipation", "damage dissipation", None),
         ("energy_residual", "balance residual", None),
@@ -48,6 +49,7 @@ def main():
     ax.set_xlabel("time [s]")
     ax.set_ylabel("energy [J per m thickness in 2D]")
     ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_title(os.path.basename(os.path.normpath(args.directory)))
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, ncol=2)
     fig.tight_layout()
