@@ -82,16 +82,27 @@ namespace scarp
       }
 
       /// Evaluate at the reference point @p xi of a cell of edge @p h for a
-      /// particle domain of half-width @p l (0 < l <= h/2).
+      /// particle domain of half-width @p l (0 <= l <= h/2).
       void
       evaluate(const Point<dim> &xi, const double h, const double l)
+      {
+        double ld[dim];
+        for (unsigned int d = 0; d < dim; ++d)
+          ld[d] = l;
+        evaluate(xi, h, ld);
+      }
+
+      /// The same with a half-width per direction (l[d] = 0 gives the Q1
+      /// weights in that direction).
+      void
+      evaluate(const Point<dim> &xi, const double h, const double (&l)[dim])
       {
         double f[dim][n_1d], df[dim][n_1d];
         for (unsigned int d = 0; d < dim; ++d)
           for (unsigned int a = 0; a < n_1d; ++a)
             weight_1d(h * (xi[d] - (static_cast<double>(a) - 1.)),
                       h,
-                      l,
+                      l[d],
                       f[d][a],
                       df[d][a]);
         for (unsigned int i = 0; i < n; ++i)
