@@ -125,6 +125,13 @@ namespace scarp
       {
         return dt;
       }
+      /// Whether this scene runs the non-local damage average at all (only
+      /// scenes with a damage material do).
+      bool
+      has_nonlocal_average() const
+      {
+        return averager != nullptr;
+      }
       const grid::BackgroundGrid<dim> &
       background_grid() const
       {
