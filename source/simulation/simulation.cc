@@ -411,6 +411,7 @@ namespace scarp
                            grid.mapping(),
                            layout.n_properties());
       seed_bodies();
+      balance_load();
       mpm = std::make_unique<transfer::MpmTransfer<dim>>(
         grid, particles, layout, material_pointers, transfer_parameters);
       mpm->setup();
@@ -424,6 +425,40 @@ namespace scarp
       initial_energy  = last_report.kinetic_energy +
                        last_report.gravitational_energy;
       scale_of_energy = last_report.kinetic_energy;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::balance_load()
+    {
+      if (Utilities::MPI::n_mpi_processes(communicator) == 1)
+        return;
+      // The work is per material point, not per cell: weigh cells by their
+      // points (as in step-68), so that a cliff filling part of the box is
+      // shared evenly. deal.II 9.4 adds no base weight once a function is
+      // connected, so the empty-cell cost is ours too. The connection stays
+      // for every later refinement.
+      if (!weight_connection.connected())
+        weight_connection = grid.triangulation().signals.weight.connect(
+          [this](const typename Triangulation<dim>::cell_iterator &cell,
+                 const typename Triangulation<dim>::CellStatus     status)
+            -> unsigned int {
+            unsigned int n = 0;
+            if (status == Triangulation<dim>::CELL_COARSEN)
+              {
+                for (const auto &child : cell->child_iterators())
+                  if (child->is_active())
+                    n += particles.n_particles_in_cell(child);
+              }
+            else if (cell->is_active())
+              n = particles.n_particles_in_cell(cell);
+            return 10 + 100 * n;
+          });
+      particles.prepare_for_coarsening_and_refinement();
+      grid.triangulation().repartition();
+      particles.unpack_after_coarsening_and_refinement();
+      grid.setup_dofs();
     }
 
 

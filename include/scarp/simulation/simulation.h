@@ -176,6 +176,10 @@ namespace scarp
 
       void
       seed_bodies();
+      /// Repartition the mesh so that every rank holds about as many
+      /// material points (cells weighted by their points).
+      void
+      balance_load();
       void
       advance(const Stage &stage);
       void
@@ -224,6 +228,7 @@ namespace scarp
       std::vector<double>                               nonlocal_driver;
       bool                                              any_damage = false;
       std::vector<BoundingBox<dim>>                     local_boxes;
+      boost::signals2::connection                       weight_connection;
 
       Tensor<1, dim> gravity;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
