@@ -103,7 +103,8 @@ namespace scarp
       , layout(layout)
       , materials(materials)
       , parameters(parameters)
-    {}
+    {
+    }
 
 
     template <int dim>
@@ -111,7 +112,9 @@ namespace scarp
     MpmTransfer<dim>::setup()
     {
       const MPI_Comm comm = grid.dof_handler().get_communicator();
-      mass.reinit(grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+      mass.reinit(grid.locally_owned_dofs(),
+                  grid.locally_relevant_dofs(),
+                  comm);
       for (unsigned int d = 0; d < dim; ++d)
         for (Vector *v : {&momentum[d],
                           &force[d],
@@ -182,6 +185,31 @@ namespace scarp
 
 
     template <int dim>
+    template <class Shape>
+    void
+    MpmTransfer<dim>::cell_nodes(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      double                                               &h,
+      Point<dim>                                           &x0,
+      std::vector<types::global_dof_index>                 &dofs) const
+    {
+      // Cells are axis-aligned squares (cubes): the edge is the distance of
+      // the first two vertices, which is cheaper than extent_in_direction().
+      x0 = cell->vertex(0);
+      h  = cell->vertex(1)[0] - x0[0];
+      if constexpr (std::is_same_v<Shape, GimpShape<dim>>)
+        {
+          const types::global_dof_index *patch =
+            patch_dofs.data() + cell->active_cell_index() * Shape::n;
+          for (unsigned int i = 0; i < Shape::n; ++i)
+            dofs[i] = patch[i];
+        }
+      else
+        cell->get_dof_indices(dofs);
+    }
+
+
+    template <int dim>
     void
     MpmTransfer<dim>::particles_to_grid(const double          dt,
                                         const Tensor<1, dim> &gravity,
@@ -209,7 +237,7 @@ namespace scarp
           force[d]    = 0;
         }
       constexpr unsigned int                  n = Shape::n;
-      dealii::Vector<double> local_mass(n);
+      dealii::Vector<double>                  local_mass(n);
       std::array<dealii::Vector<double>, dim> local_momentum, local_force;
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -219,7 +247,7 @@ namespace scarp
       std::vector<types::global_dof_index> dofs(n);
       Shape                                shape;
       Point<dim>                           node[n];
-      const bool apic = layout.has_affine;
+      const bool                           apic = layout.has_affine;
 
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
         {
@@ -228,27 +256,14 @@ namespace scarp
           const auto particles = particle_handler.particles_in_cell(cell);
           if (particles.begin() == particles.end())
             continue;
-          const double     h  = cell->extent_in_direction(0);
-          const Point<dim> x0 = cell->vertex(0);
-          if constexpr (gimp)
-            {
-              const types::global_dof_index *patch =
-                patch_dofs.data() + cell->active_cell_index() * n;
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  dofs[i] = patch[i];
-                  for (unsigned int d = 0; d < dim; ++d)
-                    node[i][d] = x0[d] + h * Shape::offset(i, d);
-                }
-            }
-          else
-            {
-              cell->get_dof_indices(dofs);
-              if (apic)
-                for (unsigned int i = 0; i < n; ++i)
-                  node[i] = cell->vertex(i);
-            }
-          local_mass          = 0;
+          double     h;
+          Point<dim> x0;
+          cell_nodes<Shape>(cell, h, x0, dofs);
+          if (apic)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                node[i][d] = x0[d] + h * Shape::offset(i, d);
+          local_mass = 0;
           for (unsigned int d = 0; d < dim; ++d)
             {
               local_momentum[d] = 0;
@@ -270,10 +285,9 @@ namespace scarp
                 }
               else
                 shape.evaluate(xi, h);
-              const double m = p[layout.mass];
-              const Tensor<1, dim> v =
-                layout.get_vector(p, layout.velocity);
-              Tensor<2, dim> C;
+              const double         m = p[layout.mass];
+              const Tensor<1, dim> v = layout.get_vector(p, layout.velocity);
+              Tensor<2, dim>       C;
               if (apic)
                 C = layout.get_matrix(p, layout.affine);
               const Point<dim> xp = x0 + h * xi;
@@ -287,7 +301,7 @@ namespace scarp
                   // empty cells (vibrating bar, rotating disk).
                   for (unsigned int i = 0; i < n; ++i)
                     {
-                      const double   w = shape.value[i] * m;
+                      const double   w  = shape.value[i] * m;
                       Tensor<1, dim> vi = v;
                       local_mass(i) += w;
                       for (unsigned int d = 0; d < dim; ++d)
@@ -372,7 +386,7 @@ namespace scarp
                                  const Damping &damping,
                                  StepReport    &report)
     {
-      const unsigned int n_owned = mass.locally_owned_size();
+      const unsigned int n_owned      = mass.locally_owned_size();
       double             damping_work = 0;
       for (unsigned int k = 0; k < n_owned; ++k)
         {
@@ -386,7 +400,8 @@ namespace scarp
               // it (a uniform motion would create stress).
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  const double v = m > 0 ? momentum[d].local_element(k) / m : 0.;
+                  const double v =
+                    m > 0 ? momentum[d].local_element(k) / m : 0.;
                   velocity_old[d].local_element(k) = v;
                   velocity_new[d].local_element(k) =
                     m > 0 ? v + dt * gravity_for_empty_nodes[d] : 0.;
@@ -396,8 +411,8 @@ namespace scarp
             }
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const double v_old = momentum[d].local_element(k) / m;
-              double       f     = force[d].local_element(k);
+              const double v_old  = momentum[d].local_element(k) / m;
+              double       f      = force[d].local_element(k);
               double       f_damp = 0;
               if (damping.type == Damping::Type::viscous)
                 f_damp = -damping.coefficient * m * v_old;
@@ -558,12 +573,12 @@ namespace scarp
       constexpr unsigned int n    = Shape::n;
       std::vector<types::global_dof_index> dofs(n);
       Shape                                shape;
-      const double alpha = parameters.flip_fraction;
-      const bool   apic  = layout.has_affine;
-      const BoundingBox<dim> &domain = grid.domain();
-      std::vector<Batch<dim>> batches(materials.size());
-      Tensor<1, dim>          v_new[n], v_old[n], v_stress[n];
-      bool                    empty[n];
+      const double                         alpha  = parameters.flip_fraction;
+      const bool                           apic   = layout.has_affine;
+      const BoundingBox<dim>              &domain = grid.domain();
+      std::vector<Batch<dim>>              batches(materials.size());
+      Tensor<1, dim>                       v_new[n], v_old[n], v_stress[n];
+      bool                                 empty[n];
 
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
         {
@@ -572,17 +587,9 @@ namespace scarp
           auto particles = particle_handler.particles_in_cell(cell);
           if (particles.begin() == particles.end())
             continue;
-          const double     h  = cell->extent_in_direction(0);
-          const Point<dim> x0 = cell->vertex(0);
-          if constexpr (gimp)
-            {
-              const types::global_dof_index *patch =
-                patch_dofs.data() + cell->active_cell_index() * n;
-              for (unsigned int i = 0; i < n; ++i)
-                dofs[i] = patch[i];
-            }
-          else
-            cell->get_dof_indices(dofs);
+          double     h;
+          Point<dim> x0;
+          cell_nodes<Shape>(cell, h, x0, dofs);
           // A node no point gives mass to (a point on a cell edge has zero
           // weight but a non-zero gradient there) knows no velocity; it takes
           // part in gradients with the point's own interpolated velocity,
@@ -650,7 +657,7 @@ namespace scarp
                   particle.set_location(x_new);
                   const bool finite = std::isfinite(v.norm_square()) &&
                                       std::isfinite(x_new.norm_square());
-                  const bool outside = finite && !domain.point_inside(x_new);
+                  const bool outside  = finite && !domain.point_inside(x_new);
                   const bool too_fast = finite && dx.norm_square() > h * h;
                   if (!finite)
                     report.n_not_finite += 1;
@@ -671,8 +678,8 @@ namespace scarp
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
                     if (!empty[i])
-                      L += outer_product(v_stress[i] - v_point,
-                                         shape.gradient[i]);
+                      L +=
+                        outer_product(v_stress[i] - v_point, shape.gradient[i]);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;
@@ -718,8 +725,8 @@ namespace scarp
                   const double V = p[layout.reference_volume] * J;
                   report.internal_work += 0.5 * dt * V * power;
 
-                  Batch<dim> &b = batches[static_cast<unsigned int>(
-                    p[layout.material_id])];
+                  Batch<dim> &b =
+                    batches[static_cast<unsigned int>(p[layout.material_id])];
                   b.delta_F.push_back(embed<dim>(dF, 1.));
                   b.strain_increment.push_back(
                     embed<dim>(Tensor<2, dim>(dt * symmetrize(L)), 0.));
@@ -775,7 +782,7 @@ namespace scarp
                 }
               for (unsigned int k = 0; k < batch.n; ++k)
                 {
-                  double                      *p = b.properties[k];
+                  double                      *p     = b.properties[k];
                   const SymmetricTensor<2, 3> &sigma = b.stress[k];
                   layout.set_stress(p, layout.stress, sigma);
                   const double J  = determinant(b.F[k]);
@@ -834,13 +841,8 @@ namespace scarp
           grid_to_particles(
             dt, true, false, velocity_new, report, nullptr, gravity);
           remap_momentum(report);
-          grid_to_particles(dt,
-                            false,
-                            true,
-                            velocity_remapped,
-                            report,
-                            damage_points,
-                            gravity);
+          grid_to_particles(
+            dt, false, true, velocity_remapped, report, damage_points, gravity);
         }
       return report;
     }

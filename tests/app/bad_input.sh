@@ -59,6 +59,24 @@ subsection Body cliff
   end
 end"
 
+# Includes resolve relative to the including file at any depth, and an
+# error names the file and line the user wrote: nested/a/top.prm includes
+# ../b/mid.prm, which includes leaf.prm (next to mid.prm, not the working
+# directory), whose line 2 is bad.
+mkdir -p nested/a nested/b
+printf 'include ../b/mid.prm\n' > nested/a/top.prm
+printf 'include %s\ninclude leaf.prm\n' "$base" > nested/b/mid.prm
+printf '# leaf\nset Pink elephants = 3\n' > nested/b/leaf.prm
+"$scarp" nested/a/top.prm > nested.log 2>&1; s=$?
+if [ $s -eq 1 ] && grep -q "Line <2> of file <.*nested/b/leaf.prm>" nested.log; then
+  echo "  ok:   nested include: $(grep -m1 'Line <2>' nested.log | cut -c1-120)"
+else
+  echo "  FAIL: nested include ($s)"; tail -5 nested.log; failures=$((failures+1))
+fi
+printf 'include cycle.prm\n' > cycle.prm
+"$scarp" cycle.prm > cycle.log 2>&1; s=$?
+if [ $s -eq 1 ] && grep -q "includes itself" cycle.log; then echo "  ok:   include cycle"; else echo "  FAIL: include cycle ($s)"; failures=$((failures+1)); fi
+
 "$scarp" does_not_exist.prm > missing.log 2>&1; s=$?
 if [ $s -eq 1 ] && grep -q "cannot read the scene file" missing.log; then echo "  ok:   missing file"; else echo "  FAIL: missing file ($s)"; failures=$((failures+1)); fi
 

@@ -39,8 +39,9 @@ namespace scarp
     get_vector(const ParameterHandler &prm, const std::string &entry);
 
     /// Parse @p filename into @p prm with `include` lines resolved relative
-    /// to the directory of the including file (deal.II resolves them
-    /// relative to the working directory).
+    /// to the directory of the including file, at any depth (deal.II
+    /// resolves them relative to the working directory). Errors name the
+    /// file and line the user wrote; an include cycle is an error.
     void
     parse_file(ParameterHandler  &prm,
                const std::string &filename,

@@ -4,6 +4,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -63,20 +64,40 @@ namespace scarp
           // Plane strain keeps xz = yz = 0 exactly: the in-plane 2x2 block
           // has a closed-form decomposition (about ten times cheaper than
           // the iterative 3x3 one, and exact for repeated eigenvalues).
-          const double mean   = 0.5 * (A[0][0] + A[1][1]);
-          const double half   = 0.5 * (A[0][0] - A[1][1]);
-          const double radius = std::hypot(half, A[0][1]);
-          const double angle  = 0.5 * std::atan2(A[0][1], half);
-          const double c = std::cos(angle), s = std::sin(angle);
-          std::array<double, 3>       values = {{mean + radius,
-                                                 mean - radius,
-                                                 A[2][2]}};
+          const double mean = 0.5 * (A[0][0] + A[1][1]);
+          const double half = 0.5 * (A[0][0] - A[1][1]);
+          const double b    = A[0][1];
+          // Scaled by the larger of |half|, |b| (> 0 here, as b != 0): the
+          // off-diagonal of a nearly isotropic tensor can be ~1e-160, whose
+          // square underflows.
+          const double scale = std::max(std::abs(half), std::abs(b));
+          const double hs = half / scale, bs = b / scale;
+          const double rs     = std::sqrt(hs * hs + bs * bs);
+          const double radius = scale * rs;
+          // Unit eigenvector (c, s) of the larger eigenvalue without trig:
+          // of the two parallel candidates (half + r, b) and (b, r - half)
+          // take the one without cancellation; c >= 0 as with atan2.
+          double c, s;
+          if (hs >= 0.)
+            {
+              const double n = std::sqrt(2. * rs * (rs + hs));
+              c              = (hs + rs) / n;
+              s              = bs / n;
+            }
+          else
+            {
+              const double n = std::sqrt(2. * rs * (rs - hs));
+              c              = std::abs(bs) / n;
+              s              = std::copysign(rs - hs, bs) / n;
+            }
+          std::array<double, 3> values = {
+            {mean + radius, mean - radius, A[2][2]}};
           std::array<Tensor<1, 3>, 3> vectors;
-          vectors[0][0] = c;
-          vectors[0][1] = s;
-          vectors[1][0] = -s;
-          vectors[1][1] = c;
-          vectors[2][2] = 1.;
+          vectors[0][0]                     = c;
+          vectors[0][1]                     = s;
+          vectors[1][0]                     = -s;
+          vectors[1][1]                     = c;
+          vectors[2][2]                     = 1.;
           std::array<unsigned int, 3> order = {{0, 1, 2}};
           if (values[order[1]] < values[order[2]])
             std::swap(order[1], order[2]);

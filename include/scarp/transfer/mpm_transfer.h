@@ -72,11 +72,11 @@ namespace scarp
     public:
       using Vector = LinearAlgebra::distributed::Vector<double>;
 
-      MpmTransfer(const grid::BackgroundGrid<dim>              &grid,
-                  Particles::ParticleHandler<dim>              &particles,
-                  const particles::PropertyLayout<dim>         &layout,
+      MpmTransfer(const grid::BackgroundGrid<dim>                &grid,
+                  Particles::ParticleHandler<dim>                &particles,
+                  const particles::PropertyLayout<dim>           &layout,
                   const std::vector<const materials::Material *> &materials,
-                  const TransferParameters                     &parameters);
+                  const TransferParameters                       &parameters);
 
       /// Size the grid vectors; call after every change of the mesh.
       void
@@ -104,10 +104,10 @@ namespace scarp
        * iteration, for the non-local step.
        */
       StepReport
-      step(const double            dt,
-           const Tensor<1, dim>   &gravity,
-           const Damping          &damping,
-           DamagePoints<dim>      *damage_points);
+      step(const double          dt,
+           const Tensor<1, dim> &gravity,
+           const Damping        &damping,
+           DamagePoints<dim>    *damage_points);
 
       /// Measure the energies and momenta of the particles as they are.
       StepReport
@@ -149,6 +149,15 @@ namespace scarp
       /// (invalid_dof_index outside the mesh). Needs a uniform mesh.
       void
       build_gimp_patches();
+      /// What P2G and G2P need of one cell: its edge @p h, its lowest
+      /// vertex @p x0 and the dofs the shape @p Shape couples its points to
+      /// (the cell's own 2^dim, or the GIMP patch).
+      template <class Shape>
+      void
+      cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                 double                                               &h,
+                 Point<dim>                                           &x0,
+                 std::vector<types::global_dof_index> &dofs) const;
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
       void
@@ -162,20 +171,20 @@ namespace scarp
                         DamagePoints<dim>             *damage_points,
                         const Tensor<1, dim>          &gravity);
       void
-      add_point_measures(const double     *p,
-                         const Point<dim> &x,
+      add_point_measures(const double         *p,
+                         const Point<dim>     &x,
                          const Tensor<1, dim> &gravity,
                          StepReport           &report) const;
 
-      const grid::BackgroundGrid<dim>               &grid;
-      Particles::ParticleHandler<dim>               &particle_handler;
-      const particles::PropertyLayout<dim>          &layout;
-      std::vector<const materials::Material *>       materials;
-      const TransferParameters                      &parameters;
-      double                                         mass_cutoff = 0;
-      const Function<dim>                           *body_force  = nullptr;
-      Tensor<1, dim>                                 last_gravity;
-      Tensor<1, dim>                                 gravity_for_empty_nodes;
+      const grid::BackgroundGrid<dim>         &grid;
+      Particles::ParticleHandler<dim>         &particle_handler;
+      const particles::PropertyLayout<dim>    &layout;
+      std::vector<const materials::Material *> materials;
+      const TransferParameters                &parameters;
+      double                                   mass_cutoff = 0;
+      const Function<dim>                     *body_force  = nullptr;
+      Tensor<1, dim>                           last_gravity;
+      Tensor<1, dim>                           gravity_for_empty_nodes;
 
       /// GIMP patches: 4^dim dofs per active cell index (empty with Q1).
       std::vector<types::global_dof_index> patch_dofs;

@@ -26,6 +26,14 @@ namespace scarp
       double                        value[n];
       Tensor<1, dim>                gradient[n];
 
+      /// Offset of node i from the cell's lowest vertex in direction d, in
+      /// cells (deal.II's vertex numbering: bit d of i).
+      static constexpr int
+      offset(const unsigned int i, const unsigned int d)
+      {
+        return static_cast<int>((i >> d) & 1u);
+      }
+
       /// Evaluate at the reference point @p xi of a cell of edge @p h.
       void
       evaluate(const Point<dim> &xi, const double h)
