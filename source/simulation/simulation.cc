@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <scarp/base/exceptions.h>
 #include <scarp/base/parameter_tools.h>
@@ -42,7 +42,8 @@ namespace scarp
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
       , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
       , grid(communicator)
-    {}
+    {
+    }
 
 
     template <int dim>
@@ -176,12 +177,13 @@ namespace scarp
       prm.leave_subsection();
       prm.enter_subsection("Cliff diagnostics");
       postprocess::CliffDiagnostics::declare_parameters(prm);
-      prm.declare_entry("Failure speed",
-                        "0.1",
-                        Patterns::Double(0.),
-                        "Failure onset: the first time, in a stage with damage, "
-                        "that a material point of the cliff moves faster than "
-                        "this [m/s]. Used only by scenes with a cliff body.");
+      prm.declare_entry(
+        "Failure speed",
+        "0.1",
+        Patterns::Double(0.),
+        "Failure onset: the first time, in a stage with damage, "
+        "that a material point of the cliff moves faster than "
+        "this [m/s]. Used only by scenes with a cliff body.");
       prm.leave_subsection();
       prm.enter_subsection("Stability");
       prm.declare_entry("Energy growth tolerance",
@@ -232,11 +234,12 @@ namespace scarp
         {
           prm.enter_subsection("Body " + name);
           Body body;
-          body.name = name;
+          body.name                  = name;
           const std::string material = prm.get("Material");
-          body.material =
-            std::find(lists.materials.begin(), lists.materials.end(), material) -
-            lists.materials.begin();
+          body.material              = std::find(lists.materials.begin(),
+                                    lists.materials.end(),
+                                    material) -
+                          lists.materials.begin();
           body.per_direction = prm.get_integer("Particles per cell");
           prm.enter_subsection("Initial velocity");
           body.velocity = std::make_unique<Functions::ParsedFunction<dim>>(dim);
@@ -365,8 +368,8 @@ namespace scarp
 
       if (any_damage)
         {
-          double                 length = -1;
-          nonlocal::WeightType   weight = nonlocal::WeightType::bell;
+          double               length = -1;
+          nonlocal::WeightType weight = nonlocal::WeightType::bell;
           for (const auto &m : materials)
             if (m->has_damage())
               {
@@ -375,12 +378,12 @@ namespace scarp
                 nonlocal::WeightType w = nonlocal::WeightType::bell;
                 if (chalk)
                   w = chalk->nonlocal_weight() ==
-                          materials::NonlocalWeight::gaussian ?
-                        nonlocal::WeightType::gaussian :
-                      chalk->nonlocal_weight() ==
-                          materials::NonlocalWeight::local ?
-                        nonlocal::WeightType::local :
-                        nonlocal::WeightType::bell;
+                          materials::NonlocalWeight::gaussian
+                        ? nonlocal::WeightType::gaussian
+                      : chalk->nonlocal_weight() ==
+                          materials::NonlocalWeight::local
+                        ? nonlocal::WeightType::local
+                        : nonlocal::WeightType::bell;
                 if (length >= 0 &&
                     (length != m->nonlocal_length() || w != weight))
                   throw ScarpError("All damage materials of a scene must "
@@ -422,8 +425,8 @@ namespace scarp
       mpm->set_mass_cutoff(transfer_parameters.mass_cutoff * rho_max *
                            std::pow(grid.minimum_cell_size(), dim));
       last_report = measure();
-      initial_energy  = last_report.kinetic_energy +
-                       last_report.gravitational_energy;
+      initial_energy =
+        last_report.kinetic_energy + last_report.gravitational_energy;
       scale_of_energy = last_report.kinetic_energy;
     }
 
@@ -469,9 +472,9 @@ namespace scarp
       types::particle_index next_id = 0;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          const Body &body = bodies[b];
+          const Body                &body     = bodies[b];
           const materials::Material &material = *materials[body.material];
-          const auto inside = [&](const Point<dim> &x) {
+          const auto                 inside   = [&](const Point<dim> &x) {
             if (!body.shape->contains(x))
               return false;
             for (unsigned int c = 0; c < b; ++c)
@@ -488,8 +491,8 @@ namespace scarp
               body.stress->vector_value(x, s);
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  p[layout.velocity + d]           = v[d];
-                  p[layout.reference_position + d] = x[d];
+                  p[layout.velocity + d]                       = v[d];
+                  p[layout.reference_position + d]             = x[d];
                   p[layout.deformation_gradient + d * dim + d] = 1.;
                 }
               // APIC: the affine matrix starts as the gradient of the
@@ -518,14 +521,14 @@ namespace scarp
               if (damaged)
                 material.set_fully_damaged(p + layout.state);
             };
-          const auto n = particles::BodySeeder<dim>::seed(
-            grid.triangulation(),
-            particles,
-            body.shape->bounding_box(),
-            inside,
-            body.per_direction,
-            next_id,
-            initialize);
+          const auto n =
+            particles::BodySeeder<dim>::seed(grid.triangulation(),
+                                             particles,
+                                             body.shape->bounding_box(),
+                                             inside,
+                                             body.per_direction,
+                                             next_id,
+                                             initialize);
           if (n == 0)
             throw ScarpError("Body " + body.name +
                              " has no material point inside the background "
@@ -769,9 +772,9 @@ namespace scarp
       if (failure.empty())
         return;
       std::ostringstream message;
-      message << "Stage " << stage.name << ", step " << step << " (t = "
-              << current_time << " s, dt = " << dt << " s): " << failure
-              << " Likely cause: " << cause;
+      message << "Stage " << stage.name << ", step " << step
+              << " (t = " << current_time << " s, dt = " << dt
+              << " s): " << failure << " Likely cause: " << cause;
       write_summary("error: " + message.str());
       throw ScarpError(message.str());
     }
@@ -792,11 +795,11 @@ namespace scarp
       transfer::StepReport report;
       {
         TimerOutput::Scope scope(timer, "MPM step");
-        report = mpm->step(dt,
-                           gravity,
-                           stage.damping,
-                           (any_damage && stage.damage) ? &damage_points :
-                                                          nullptr);
+        report =
+          mpm->step(dt,
+                    gravity,
+                    stage.damping,
+                    (any_damage && stage.damage) ? &damage_points : nullptr);
         report.reduce(communicator);
       }
       internal_work += report.internal_work;
@@ -808,12 +811,15 @@ namespace scarp
       nonlocal_damage_step(stage);
       {
         TimerOutput::Scope scope(timer, "sort particles");
-        particles.sort_particles_into_subdomains_and_cells();
+        if (report.n_changed_cell > 0)
+          particles.sort_particles_into_subdomains_and_cells();
+        else
+          mpm->update_reference_locations();
       }
       if (report.n_outside > 0)
         n_removed += report.n_outside;
-      if (first_damage_time < 0 && report.max_damage > 0.5 &&
-          stage.damage && any_damage)
+      if (first_damage_time < 0 && report.max_damage > 0.5 && stage.damage &&
+          any_damage)
         first_damage_time = current_time;
       last_report = report;
       if (cliff && stage.damage && failure_time < 0 &&
@@ -827,10 +833,11 @@ namespace scarp
       if (step >= max_steps)
         {
           write_summary("error: maximum number of steps reached");
-          throw ScarpError("Stage " + stage.name + ": the run reached <Maximum "
+          throw ScarpError("Stage " + stage.name +
+                           ": the run reached <Maximum "
                            "steps> = " +
-                           std::to_string(max_steps) + " at t = " +
-                           std::to_string(current_time) + " s.");
+                           std::to_string(max_steps) +
+                           " at t = " + std::to_string(current_time) + " s.");
         }
     }
 
@@ -840,7 +847,7 @@ namespace scarp
     Simulation<dim>::refine_mesh()
     {
       TimerOutput::Scope scope(timer, "refinement");
-      auto &tria = grid.triangulation();
+      auto              &tria = grid.triangulation();
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -975,11 +982,11 @@ namespace scarp
       pcout << "  " << std::setw(8) << stage.name << "  step " << std::setw(7)
             << step << "  t = " << std::setw(10) << std::setprecision(5)
             << current_time << " s  dt = " << std::setw(9)
-            << std::setprecision(3) << dt
-            << " s  E_kin = " << std::setw(10) << r.kinetic_energy
-            << " J  max d = " << std::setw(5) << std::setprecision(3)
-            << r.max_damage << "  wall " << format_seconds(wall)
-            << "  ETA <= " << format_seconds(eta) << std::endl;
+            << std::setprecision(3) << dt << " s  E_kin = " << std::setw(10)
+            << r.kinetic_energy << " J  max d = " << std::setw(5)
+            << std::setprecision(3) << r.max_damage << "  wall "
+            << format_seconds(wall) << "  ETA <= " << format_seconds(eta)
+            << std::endl;
     }
 
 
@@ -998,7 +1005,8 @@ namespace scarp
       summary.add("steps", double(step));
       summary.add("time", current_time);
       summary.add("material_points", last_report.n_points);
-      summary.add("cells", double(grid.triangulation().n_global_active_cells()));
+      summary.add("cells",
+                  double(grid.triangulation().n_global_active_cells()));
       summary.add("wall_time", wall_clock.wall_time());
       const double point_steps = last_report.n_points * step;
       summary.add("particle_steps_per_second",
@@ -1113,13 +1121,13 @@ namespace scarp
 
       for (current_stage = 0; current_stage < stages.size(); ++current_stage)
         {
-          const Stage &stage      = stages[current_stage];
-          const double start_time = current_time;
+          const Stage       &stage      = stages[current_stage];
+          const double       start_time = current_time;
           const unsigned int start_step = step;
-          const double start_wall = wall_clock.wall_time();
-          stage_peak_kinetic      = 0;
-          settled_since           = -1;
-          std::string reason      = "end time";
+          const double       start_wall = wall_clock.wall_time();
+          stage_peak_kinetic            = 0;
+          settled_since                 = -1;
+          std::string reason            = "end time";
           pcout << "Stage " << stage.name << " (to t = " << stage.end_time
                 << " s)" << std::endl;
           if (cliff && stage.damage && damage_stage_start < 0)
@@ -1144,15 +1152,15 @@ namespace scarp
                 {
                   stage_peak_kinetic =
                     std::max(stage_peak_kinetic, last_report.kinetic_energy);
-                  const bool quiet =
-                    step - start_step > 20 &&
-                    last_report.kinetic_energy <=
-                      stage.kinetic_ratio * stage_peak_kinetic;
+                  const bool quiet = step - start_step > 20 &&
+                                     last_report.kinetic_energy <=
+                                       stage.kinetic_ratio * stage_peak_kinetic;
                   if (!quiet)
                     settled_since = -1;
                   else if (settled_since < 0)
                     settled_since = current_time;
-                  if (quiet && current_time - settled_since >= stage.settle_time)
+                  if (quiet &&
+                      current_time - settled_since >= stage.settle_time)
                     {
                       reason = "kinetic energy settled";
                       break;
@@ -1204,7 +1212,8 @@ namespace scarp
           const auto &m =
             *materials[static_cast<unsigned int>(p[layout.material_id])];
           const Point<dim> x = particle.get_location();
-          const double J = determinant(layout.get_matrix(p, layout.deformation_gradient));
+          const double     J =
+            determinant(layout.get_matrix(p, layout.deformation_gradient));
           local.insert(local.end(),
                        {x[0],
                         x[1],
@@ -1236,16 +1245,18 @@ namespace scarp
       if (!outputs_enabled || !cliff || dim != 2)
         return;
       TimerOutput::Scope scope(timer, "cliff diagnostics");
-      const auto points = gather_cliff_points();
+      const auto         points = gather_cliff_points();
       if (Utilities::MPI::this_mpi_process(communicator) != 0)
         return;
       postprocess::CliffDiagnostics::write_particles_csv(
         output_directory + "/cliff_" + tag + "_particles.csv", points);
       if (tag != "end")
         return;
-      const auto profile = cliff_diagnostics.surface_profile(
-        points, cliff->get_parameters().beach_level, grid.domain().lower_bound(0),
-        grid.domain().upper_bound(0));
+      const auto profile =
+        cliff_diagnostics.surface_profile(points,
+                                          cliff->get_parameters().beach_level,
+                                          grid.domain().lower_bound(0),
+                                          grid.domain().upper_bound(0));
       const auto r = cliff_diagnostics.analyse(profile, points, *cliff);
       postprocess::CliffDiagnostics::write_profile_csv(
         output_directory + "/cliff_profile.csv", profile, &r);
@@ -1264,13 +1275,12 @@ namespace scarp
                           last_report.damage_dissipation);
       cliff_summary.add("plastic_dissipation_J",
                         last_report.plastic_dissipation);
-      cliff_summary.add("damage_dissipation_J",
-                        last_report.damage_dissipation);
+      cliff_summary.add("damage_dissipation_J", last_report.damage_dissipation);
       std::ostringstream s;
       s << std::setprecision(4) << "Cliff: debris angle " << r.debris_angle
-        << " deg, run-out " << r.run_out << " m, failed area "
-        << r.failed_area << " m^2, scarp at x = " << r.scarp_position
-        << " m, failure onset " << onset << " s after the start of damage, "
+        << " deg, run-out " << r.run_out << " m, failed area " << r.failed_area
+        << " m^2, scarp at x = " << r.scarp_position << " m, failure onset "
+        << onset << " s after the start of damage, "
         << "max damage " << last_report.max_damage << ", dissipated "
         << last_report.plastic_dissipation + last_report.damage_dissipation
         << " J/m";

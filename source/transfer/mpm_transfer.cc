@@ -249,15 +249,12 @@ namespace scarp
       Point<dim>                           node[n];
       const bool                           apic = layout.has_affine;
 
-      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      for (const OccupiedCell &occupied : occupied_cells)
         {
-          if (!cell->is_locally_owned())
-            continue;
-          const auto particles = particle_handler.particles_in_cell(cell);
-          if (particles.begin() == particles.end())
-            continue;
-          double     h;
-          Point<dim> x0;
+          const auto &cell      = occupied.cell;
+          const auto &particles = occupied.particles;
+          double      h;
+          Point<dim>  x0;
           cell_nodes<Shape>(cell, h, x0, dofs);
           if (apic)
             for (unsigned int i = 0; i < n; ++i)
@@ -580,15 +577,12 @@ namespace scarp
       Tensor<1, dim>                       v_new[n], v_old[n], v_stress[n];
       bool                                 empty[n];
 
-      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      for (const OccupiedCell &occupied : occupied_cells)
         {
-          if (!cell->is_locally_owned())
-            continue;
-          auto particles = particle_handler.particles_in_cell(cell);
-          if (particles.begin() == particles.end())
-            continue;
-          double     h;
-          Point<dim> x0;
+          const auto &cell      = occupied.cell;
+          auto        particles = occupied.particles;
+          double      h;
+          Point<dim>  x0;
           cell_nodes<Shape>(cell, h, x0, dofs);
           // A node no point gives mass to (a point on a cell edge has zero
           // weight but a non-zero gradient there) knows no velocity; it takes
@@ -663,6 +657,12 @@ namespace scarp
                     report.n_not_finite += 1;
                   report.n_outside += outside;
                   report.n_too_fast += too_fast;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (!(x_new[d] >= x0[d] && x_new[d] <= x0[d] + h))
+                      {
+                        report.n_changed_cell += 1;
+                        break;
+                      }
                   if ((!finite || outside || too_fast) && !report.has_offender)
                     {
                       report.has_offender = true;
@@ -820,6 +820,40 @@ namespace scarp
 
 
     template <int dim>
+    void
+    MpmTransfer<dim>::update_reference_locations()
+    {
+      for (const OccupiedCell &occupied : occupied_cells)
+        {
+          const Point<dim> x0 = occupied.cell->vertex(0);
+          const double     h  = occupied.cell->vertex(1)[0] - x0[0];
+          for (auto &particle : occupied.particles)
+            {
+              Point<dim> xi;
+              for (unsigned int d = 0; d < dim; ++d)
+                xi[d] = (particle.get_location()[d] - x0[d]) / h;
+              particle.set_reference_location(xi);
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::find_occupied_cells()
+    {
+      occupied_cells.clear();
+      for (const auto &cell : grid.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            auto particles = particle_handler.particles_in_cell(cell);
+            if (particles.begin() != particles.end())
+              occupied_cells.push_back({cell, particles});
+          }
+    }
+
+
+    template <int dim>
     StepReport
     MpmTransfer<dim>::step(const double          dt,
                            const Tensor<1, dim> &gravity,
@@ -831,6 +865,7 @@ namespace scarp
       gravity_for_empty_nodes = gravity;
       if (damage_points)
         damage_points->clear();
+      find_occupied_cells();
       particles_to_grid(dt, gravity, false);
       solve_grid(dt, damping, report);
       if (parameters.scheme == UpdateScheme::usl)

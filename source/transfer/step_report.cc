@@ -33,7 +33,8 @@ namespace scarp
                                   n_not_finite,
                                   n_inverted,
                                   n_outside,
-                                  n_too_fast};
+                                  n_too_fast,
+                                  n_changed_cell};
       Utilities::MPI::sum(sums, communicator, sums);
       unsigned int k = 0;
       for (double *x : {&kinetic_energy,
@@ -56,7 +57,8 @@ namespace scarp
                         &n_not_finite,
                         &n_inverted,
                         &n_outside,
-                        &n_too_fast})
+                        &n_too_fast,
+                        &n_changed_cell})
         *x = sums[k++];
       // Ranks accumulate the squared speed (no root per point).
       std::vector<double> maxima = {max_speed, max_damage};

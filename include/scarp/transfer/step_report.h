@@ -21,27 +21,30 @@ namespace scarp
     struct StepReport
     {
       // Sums (reduced with MPI_SUM).
-      double kinetic_energy        = 0; ///< sum m |v|^2 / 2
-      double gravitational_energy  = 0; ///< -sum m g.x
-      double stored_energy         = 0; ///< sum V0 psi
-      double internal_work         = 0; ///< dt sum V sigma : D (this step)
-      double damping_dissipation   = 0; ///< energy removed by damping
-      double boundary_dissipation  = 0; ///< energy removed by the boundaries
-      double mass                  = 0;
-      double plastic_dissipation   = 0; ///< cumulative, from material states
-      double damage_dissipation    = 0; ///< cumulative, from material states
-      double damaged_volume        = 0; ///< sum V d
-      double n_points              = 0;
+      double kinetic_energy       = 0; ///< sum m |v|^2 / 2
+      double gravitational_energy = 0; ///< -sum m g.x
+      double stored_energy        = 0; ///< sum V0 psi
+      double internal_work        = 0; ///< dt sum V sigma : D (this step)
+      double damping_dissipation  = 0; ///< energy removed by damping
+      double boundary_dissipation = 0; ///< energy removed by the boundaries
+      double mass                 = 0;
+      double plastic_dissipation  = 0; ///< cumulative, from material states
+      double damage_dissipation   = 0; ///< cumulative, from material states
+      double damaged_volume       = 0; ///< sum V d
+      double n_points             = 0;
       std::array<double, 3> momentum{{0, 0, 0}};
       std::array<double, 3> angular_momentum{{0, 0, 0}};
       // Maxima (reduced with MPI_MAX).
       double max_speed  = 0; ///< largest |v| (|v|^2 before reduce())
       double max_damage = 0;
       // Failure counts (summed).
-      double n_not_finite  = 0; ///< NaN or inf in velocity, F or stress
-      double n_inverted    = 0; ///< J <= 0
-      double n_outside     = 0; ///< left the mesh
-      double n_too_fast    = 0; ///< moved more than a cell in one step
+      double n_not_finite = 0; ///< NaN or inf in velocity, F or stress
+      double n_inverted   = 0; ///< J <= 0
+      double n_outside    = 0; ///< left the mesh
+      double n_too_fast   = 0; ///< moved more than a cell in one step
+      /// Points that left their cell (not a failure): when no point on any
+      /// rank did, the particles need no sorting after the step.
+      double n_changed_cell = 0;
       /// Position of one offending point (the first found on this rank).
       std::array<double, 3> offender{{0, 0, 0}};
       bool                  has_offender = false;
