@@ -248,6 +248,7 @@ namespace scarp
       Shape                                shape;
       Point<dim>                           node[n];
       const bool                           apic = layout.has_affine;
+      const bool no_constraints = grid.constraints().n_constraints() == 0;
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
@@ -336,10 +337,10 @@ namespace scarp
                     }
                 }
             }
-          if constexpr (gimp)
+          if (gimp || no_constraints)
             {
-              // Uniform mesh: no constraints; patch nodes outside the mesh
-              // (invalid) get nothing.
+              // No hanging nodes (GIMP needs a uniform mesh): add directly;
+              // GIMP patch nodes outside the mesh (invalid) get nothing.
               for (unsigned int i = 0; i < n; ++i)
                 {
                   if (dofs[i] == numbers::invalid_dof_index)
