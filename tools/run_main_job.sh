@@ -10,5 +10,6 @@ bash tools/build.sh
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 ranks=$(nproc)
 mpirun --oversubscribe -np "$ranks" build/scarp "$scene" | tee main_job.log
-outdir=$(sed -n 's/^ *set *Output directory *= *//p' "$scene" | tail -1)
+# The run names its output directory on its last line ("... Output in DIR/").
+outdir=$(sed -n 's/.*Output in \(.*\)$/\1/p' main_job.log | tail -1)
 bash tools/plot_run.sh "$outdir"
