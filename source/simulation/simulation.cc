@@ -184,6 +184,21 @@ namespace scarp
         "Failure onset: the first time, in a stage with damage, "
         "that a material point of the cliff moves faster than "
         "this [m/s]. Used only by scenes with a cliff body.");
+      prm.declare_entry(
+        "Snapshot after failure",
+        "1",
+        Patterns::Double(),
+        "Write cliff_after_failure_particles.csv this long after the "
+        "failure onset [s]: the failed block has moved, the failure surface "
+        "shows, and runs at different resolutions compare at the same stage "
+        "of the motion. Negative: no such snapshot.");
+      prm.declare_entry(
+        "Stop after failure",
+        "false",
+        Patterns::Bool(),
+        "End the run right after the <Snapshot after failure> (for "
+        "resolution studies of the failure surface, which need not run the "
+        "debris to rest). The summary then has no debris angle.");
       prm.leave_subsection();
       prm.enter_subsection("Stability");
       prm.declare_entry("Energy growth tolerance",
@@ -349,7 +364,12 @@ namespace scarp
       prm.enter_subsection("Cliff diagnostics");
       cliff_diagnostics.parse_parameters(prm);
       cliff_diagnostics.set_cell_size(grid.coarse_cell_size());
-      failure_speed = prm.get_double("Failure speed");
+      failure_speed       = prm.get_double("Failure speed");
+      after_failure_delay = prm.get_double("Snapshot after failure");
+      stop_after_failure  = prm.get_bool("Stop after failure");
+      if (stop_after_failure && after_failure_delay < 0)
+        throw ScarpError("Cliff diagnostics: <Stop after failure> = true "
+                         "needs <Snapshot after failure> >= 0.");
       prm.leave_subsection();
       for (const auto &body : bodies)
         if (body.cliff && !cliff)
@@ -1148,6 +1168,18 @@ namespace scarp
                     next_output += output_interval;
                 }
               print_progress(last_report, stage, false);
+              if (failure_time >= 0 && after_failure_delay >= 0 &&
+                  !after_failure_taken &&
+                  current_time >= failure_time + after_failure_delay)
+                {
+                  after_failure_taken = true;
+                  cliff_snapshot("after_failure");
+                  if (stop_after_failure)
+                    {
+                      reason = "stopped after failure";
+                      break;
+                    }
+                }
               if (stage.settle)
                 {
                   stage_peak_kinetic =
@@ -1186,10 +1218,27 @@ namespace scarp
           pcout << "Stage " << stage.name << " ended (" << reason
                 << ") at t = " << current_time << " s after "
                 << step - start_step << " steps" << std::endl;
+          if (after_failure_taken && stop_after_failure)
+            break;
         }
-      if (cliff)
-        cliff_snapshot("end");
-      write_summary("completed");
+      if (cliff && after_failure_taken && stop_after_failure)
+        {
+          // The debris is still moving: only the onset means something.
+          const double onset = failure_time - damage_stage_start;
+          cliff_summary.add("failure_onset_s", onset);
+          cliff_summary.add("max_damage", last_report.max_damage);
+          pcout << "Cliff: failure onset " << onset
+                << " s after the start of damage; stopped "
+                << after_failure_delay << " s later (no debris diagnostics)"
+                << std::endl;
+          write_summary("stopped after failure");
+        }
+      else
+        {
+          if (cliff)
+            cliff_snapshot("end");
+          write_summary("completed");
+        }
       timer.print_wall_time_statistics(communicator);
       pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
             << step << " steps, "

@@ -7,3 +7,35 @@ mkdir -p "$run" && cd "$run"
 rm -rf short_cliff_output
 "$scarp" "$src/tests/cliff/short_cliff.prm" > short_cliff.log 2>&1 || { tail -20 short_cliff.log; exit 1; }
 /usr/bin/python3 "$src/tests/cliff/check_short_cliff.py" "$run/short_cliff_output"
+
+# The same run stopped 0.1 s after the failure onset (what a resolution
+# study of the failure surface uses): it must say so, write the after-failure
+# snapshot, stop within a step of onset + 0.1 s, and find the same onset as
+# the full run above (same steps up to there, so equal to round-off).
+rm -rf stopped_output
+cat > stopped.prm <<PRM
+include $src/tests/cliff/short_cliff.prm
+set Output directory = stopped_output
+subsection Cliff diagnostics
+  set Snapshot after failure = 0.1
+  set Stop after failure     = true
+end
+PRM
+"$scarp" stopped.prm > stopped.log 2>&1 || { tail -20 stopped.log; exit 1; }
+/usr/bin/python3 - "$run" <<'PY'
+import csv, json, sys
+run = sys.argv[1]
+full = json.load(open(f"{run}/short_cliff_output/summary.json"))
+stop = json.load(open(f"{run}/stopped_output/summary.json"))
+rows = list(csv.DictReader(open(f"{run}/stopped_output/statistics.csv")))
+onset_full = full["cliff"]["failure_onset_s"]
+onset_stop = stop["cliff"]["failure_onset_s"]
+snap = list(csv.DictReader(open(f"{run}/stopped_output/cliff_after_failure_particles.csv")))
+ok = (stop["ended"] == "stopped after failure"
+      and abs(onset_stop - onset_full) < 1e-9
+      and len(snap) > 0)
+print(f"  stopped run: ended '{stop['ended']}', onset {onset_stop:.6f} s "
+      f"(full run {onset_full:.6f} s), {len(snap)} points in the snapshot, "
+      f"last time {rows[-1]['time']}")
+sys.exit(0 if ok else 1)
+PY

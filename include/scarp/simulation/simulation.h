@@ -158,11 +158,11 @@ namespace scarp
     private:
       struct Body
       {
-        std::string                         name;
-        unsigned int                        material = 0;
-        unsigned int                        per_direction = 2;
-        std::unique_ptr<scenes::Shape<dim>> shape;
-        std::unique_ptr<scenes::CliffProfile> cliff;
+        std::string                                     name;
+        unsigned int                                    material      = 0;
+        unsigned int                                    per_direction = 2;
+        std::unique_ptr<scenes::Shape<dim>>             shape;
+        std::unique_ptr<scenes::CliffProfile>           cliff;
         std::unique_ptr<Functions::ParsedFunction<dim>> velocity;
         std::unique_ptr<Functions::ParsedFunction<dim>> stress;
         std::unique_ptr<Functions::ParsedFunction<dim>> displacement;
@@ -187,8 +187,7 @@ namespace scarp
       void
       check(const transfer::StepReport &report, const Stage &stage);
       void
-      write_statistics(const transfer::StepReport &report,
-                       const Stage                &stage);
+      write_statistics(const transfer::StepReport &report, const Stage &stage);
       void
       write_output();
       void
@@ -207,15 +206,15 @@ namespace scarp
       void
       cliff_snapshot(const std::string &tag);
 
-      MPI_Comm                   communicator;
-      SceneLists                 lists;
-      ConditionalOStream         pcout;
-      mutable TimerOutput        timer;
-      Timer                      wall_clock;
+      MPI_Comm            communicator;
+      SceneLists          lists;
+      ConditionalOStream  pcout;
+      mutable TimerOutput timer;
+      Timer               wall_clock;
 
-      grid::BackgroundGrid<dim>       grid;
-      Particles::ParticleHandler<dim> particles;
-      particles::PropertyLayout<dim>  layout;
+      grid::BackgroundGrid<dim>                         grid;
+      Particles::ParticleHandler<dim>                   particles;
+      particles::PropertyLayout<dim>                    layout;
       std::vector<std::unique_ptr<materials::Material>> materials;
       std::vector<const materials::Material *>          material_pointers;
       std::vector<Body>                                 bodies;
@@ -230,49 +229,55 @@ namespace scarp
       std::vector<BoundingBox<dim>>                     local_boxes;
       boost::signals2::connection                       weight_connection;
 
-      Tensor<1, dim> gravity;
+      Tensor<1, dim>                                  gravity;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
       std::unique_ptr<Functions::ParsedFunction<dim>> reference_displacement;
       double reference_error_max = 0, reference_norm_max = 0,
-             reference_error_last        = -1;
-      double         cfl               = 0.5;
-      double         max_time_step     = 1e30;
-      std::string    output_directory  = "output";
-      double         output_interval   = 0;
-      unsigned int   statistics_interval = 10;
-      bool           write_mesh_files  = true;
-      double         growth_tolerance  = 0.1;
-      bool           remove_outside    = false;
-      unsigned int   max_steps         = 100000000;
+             reference_error_last      = -1;
+      double       cfl                 = 0.5;
+      double       max_time_step       = 1e30;
+      std::string  output_directory    = "output";
+      double       output_interval     = 0;
+      unsigned int statistics_interval = 10;
+      bool         write_mesh_files    = true;
+      double       growth_tolerance    = 0.1;
+      bool         remove_outside      = false;
+      unsigned int max_steps           = 100000000;
 
       // State of the time loop.
-      double       current_time  = 0;
-      double       dt            = 0;
-      unsigned int step          = 0;
-      unsigned int output_index  = 0;
-      double       next_output   = 0;
-      bool         outputs_enabled = true;
-      double       initial_energy = 0;
-      double       internal_work  = 0;
-      double       damping_dissipation  = 0;
-      double       boundary_dissipation = 0;
-      double       scale_of_energy = 0;
-      double       last_residual   = 0;
-      double       n_removed       = 0;
-      unsigned int current_stage   = 0;
-      double       stage_peak_kinetic = 0;
-      double       settled_since   = -1;
-      double       last_progress_wall = -1e9;
-      double       first_damage_time  = -1;
-      transfer::StepReport last_report;
+      double                                       current_time         = 0;
+      double                                       dt                   = 0;
+      unsigned int                                 step                 = 0;
+      unsigned int                                 output_index         = 0;
+      double                                       next_output          = 0;
+      bool                                         outputs_enabled      = true;
+      double                                       initial_energy       = 0;
+      double                                       internal_work        = 0;
+      double                                       damping_dissipation  = 0;
+      double                                       boundary_dissipation = 0;
+      double                                       scale_of_energy      = 0;
+      double                                       last_residual        = 0;
+      double                                       n_removed            = 0;
+      unsigned int                                 current_stage        = 0;
+      double                                       stage_peak_kinetic   = 0;
+      double                                       settled_since        = -1;
+      double                                       last_progress_wall   = -1e9;
+      double                                       first_damage_time    = -1;
+      transfer::StepReport                         last_report;
       std::unique_ptr<postprocess::StatisticsFile> statistics;
       std::unique_ptr<postprocess::VtuOutput<dim>> vtu;
       postprocess::JsonObject                      stage_summaries;
       postprocess::CliffDiagnostics                cliff_diagnostics;
       postprocess::JsonObject                      cliff_summary;
-      const scenes::CliffProfile                  *cliff = nullptr;
-      double failure_speed      = 0.1;
-      double failure_time       = -1;
+      const scenes::CliffProfile                  *cliff         = nullptr;
+      double                                       failure_speed = 0.1;
+      double                                       failure_time  = -1;
+      /// Snapshot "after_failure" this long after the onset [s] (< 0: none);
+      /// compares failure surfaces across resolutions at one stage of motion.
+      double after_failure_delay = 1.;
+      bool   after_failure_taken = false;
+      /// End the run once the after-failure snapshot is taken.
+      bool   stop_after_failure = false;
       double damage_stage_start = -1;
     };
   } // namespace simulation
