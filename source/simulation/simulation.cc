@@ -200,6 +200,22 @@ namespace scarp
         "resolution studies of the failure surface, which need not run the "
         "debris to rest). The summary then has no debris angle.");
       prm.leave_subsection();
+      prm.enter_subsection("Load balancing");
+      prm.declare_entry(
+        "Check interval",
+        "200",
+        Patterns::Integer(0),
+        "Every this many steps, compare the material points per rank and "
+        "repartition the mesh (cells weighted by their points) when the "
+        "largest count exceeds the mean by more than <Imbalance "
+        "tolerance>: a collapsing cliff carries its points onto cells of "
+        "another rank. 0: balance only after seeding and refinement.");
+      prm.declare_entry("Imbalance tolerance",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Repartition when max/mean - 1 of the points per "
+                        "rank exceeds this.");
+      prm.leave_subsection();
       prm.enter_subsection("Stability");
       prm.declare_entry("Energy growth tolerance",
                         "0.1",
@@ -374,6 +390,10 @@ namespace scarp
       for (const auto &body : bodies)
         if (body.cliff && !cliff)
           cliff = body.cliff.get();
+      prm.enter_subsection("Load balancing");
+      balance_interval  = prm.get_integer("Check interval");
+      balance_tolerance = prm.get_double("Imbalance tolerance");
+      prm.leave_subsection();
       prm.enter_subsection("Stability");
       growth_tolerance = prm.get_double("Energy growth tolerance");
       remove_outside   = prm.get("Points leaving the mesh") == "remove";
@@ -448,6 +468,30 @@ namespace scarp
       initial_energy =
         last_report.kinetic_energy + last_report.gravitational_energy;
       scale_of_energy = last_report.kinetic_energy;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::rebalance_if_needed()
+    {
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(communicator);
+      if (n_ranks == 1)
+        return;
+      const double n_local = particles.n_locally_owned_particles();
+      const double n_max   = Utilities::MPI::max(n_local, communicator);
+      const double n_mean =
+        Utilities::MPI::sum(n_local, communicator) / n_ranks;
+      if (!(n_max > (1. + balance_tolerance) * n_mean))
+        return;
+      TimerOutput::Scope scope(timer, "load balancing");
+      balance_load();
+      mpm->setup();
+      local_boxes.clear();
+      if (averager)
+        averager->invalidate_neighbour_lists();
+      ++n_rebalances;
     }
 
 
@@ -850,6 +894,8 @@ namespace scarp
         }
       if (grid.adaptive_refinement && step % grid.refinement_interval == 0)
         refine_mesh();
+      else if (balance_interval > 0 && step % balance_interval == 0)
+        rebalance_if_needed();
       if (step >= max_steps)
         {
           write_summary("error: maximum number of steps reached");
@@ -1023,6 +1069,7 @@ namespace scarp
       summary.add("mpi_ranks",
                   double(Utilities::MPI::n_mpi_processes(communicator)));
       summary.add("steps", double(step));
+      summary.add("load_rebalances", double(n_rebalances));
       summary.add("time", current_time);
       summary.add("material_points", last_report.n_points);
       summary.add("cells",

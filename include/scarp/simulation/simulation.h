@@ -180,6 +180,10 @@ namespace scarp
       /// material points (cells weighted by their points).
       void
       balance_load();
+      /// Repartition when the points per rank have drifted apart by more
+      /// than balance_tolerance (collective; every balance_interval steps).
+      void
+      rebalance_if_needed();
       void
       advance(const Stage &stage);
       void
@@ -241,8 +245,12 @@ namespace scarp
       unsigned int statistics_interval = 10;
       bool         write_mesh_files    = true;
       double       growth_tolerance    = 0.1;
-      bool         remove_outside      = false;
-      unsigned int max_steps           = 100000000;
+      /// Load balancing during the run (see rebalance_if_needed()).
+      unsigned int balance_interval  = 200;
+      double       balance_tolerance = 0.1;
+      unsigned int n_rebalances      = 0;
+      bool         remove_outside    = false;
+      unsigned int max_steps         = 100000000;
 
       // State of the time loop.
       double                                       current_time         = 0;

@@ -1,0 +1,99 @@
+// The closed-form plane-strain branch of spectral_decomposition() (used by
+// the Hencky predictor and the Mohr-Coulomb return at every point and step):
+// eigenpairs of random symmetric tensors with xz = yz = 0 reproduce the
+// tensor, are orthonormal, come in descending order and match eigenvalues
+// computed in long double; off-diagonals far below the diagonal (1e-162 was
+// met in the Joss Bay cliff, whose square underflows) give finite, exact
+// results.
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <scarp/materials/spectral_decomposition.h>
+
+#include <algorithm>
+#include <array>
+#include <functional>
+#include <random>
+
+#include "test_tools.h"
+
+using namespace dealii;
+using namespace scarp::materials;
+using scarp_test::check;
+using scarp_test::check_close;
+
+int
+main()
+{
+  std::mt19937                           random(42);
+  std::uniform_real_distribution<double> unit(-1., 1.);
+  double worst_reconstruction = 0, worst_orthonormality = 0,
+         worst_eigenvalue = 0;
+  bool all_finite = true, all_sorted = true;
+  for (unsigned int k = 0; k < 200000; ++k)
+    {
+      // Diagonal of order 1 with in-plane differences and off-diagonals
+      // from 1 down to 1e-320 (denormal), and some exactly equal diagonals.
+      SymmetricTensor<2, 3> A;
+      const double spread = std::pow(10., -16. * std::abs(unit(random)));
+      const double off    = std::pow(10., -320. * std::abs(unit(random)));
+      A[0][0]             = 1. + spread * unit(random);
+      A[1][1]             = (k % 4 == 0) ? A[0][0] : 1. + spread * unit(random);
+      A[2][2]             = 1. + unit(random);
+      A[0][1]             = off * unit(random);
+      const SpectralDecomposition s    = spectral_decomposition(A);
+      const double                norm = A.norm();
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          all_finite = all_finite && std::isfinite(s.values[i]) &&
+                       std::isfinite(s.vectors[i].norm_square());
+          if (i > 0)
+            all_sorted = all_sorted && s.values[i - 1] >= s.values[i];
+          for (unsigned int j = 0; j < 3; ++j)
+            worst_orthonormality =
+              std::max(worst_orthonormality,
+                       std::abs(s.vectors[i] * s.vectors[j] - (i == j)));
+        }
+      worst_reconstruction =
+        std::max(worst_reconstruction,
+                 (compose(s.values, s.vectors) - A).norm() / norm);
+      // Reference eigenvalues in long double (the 2x2 block in closed
+      // form; deal.II's eigenvalues() uses Cardano's formula, which loses
+      // half the digits at nearly repeated eigenvalues).
+      const long double          mean = 0.5L * ((long double)A[0][0] + A[1][1]);
+      const long double          half = 0.5L * ((long double)A[0][0] - A[1][1]);
+      const long double          b    = A[0][1];
+      const long double          r    = std::sqrt(half * half + b * b);
+      std::array<long double, 3> reference = {{mean + r, mean - r, A[2][2]}};
+      std::sort(reference.begin(), reference.end(), std::greater<>());
+      for (unsigned int i = 0; i < 3; ++i)
+        worst_eigenvalue =
+          std::max(worst_eigenvalue,
+                   static_cast<double>(std::abs(s.values[i] - reference[i]) /
+                                       norm));
+    }
+  check("all eigenpairs finite (off-diagonals down to 1e-320)", all_finite);
+  check("eigenvalues in descending order", all_sorted);
+  // A backward-stable closed form: a few ulps of |A| (2.2e-16 each); 1e-14
+  // leaves a factor of ~50 for the compose() round-off.
+  check_close("max |V diag(l) V^T - A| / |A|", worst_reconstruction, 0., 1e-14);
+  check_close("max |v_i . v_j - delta_ij|", worst_orthonormality, 0., 1e-14);
+  check_close("max |l_i - l_i(long double)| / |A|",
+              worst_eigenvalue,
+              0.,
+              1e-14);
+
+  // The case met in the cliff: identity plus an off-diagonal of 1.2e-162.
+  SymmetricTensor<2, 3> A       = unit_symmetric_tensor<3>();
+  A[0][1]                       = 1.17782e-162;
+  const SpectralDecomposition s = spectral_decomposition(A);
+  check_close("identity + 1.2e-162: largest eigenvalue",
+              s.values[0],
+              1.,
+              1e-15);
+  check_close("identity + 1.2e-162: |V diag(l) V^T - A|",
+              (compose(s.values, s.vectors) - A).norm(),
+              0.,
+              1e-15);
+  return 0;
+}
