@@ -153,7 +153,70 @@ namespace scarp
       if (n_ranks > 1)
         ++communicating_call_count;
 
-      const bool rebuild =
+      // The points arrive in cell order, which changes whenever one of them
+      // crosses into another cell. If this rank still holds the same points,
+      // reorder the input to the order of the last build instead of
+      // rebuilding lists and messages (which would happen almost every step
+      // while the debris flows).
+      if (lists_valid && ids.size() == built_ids.size() && ids != built_ids)
+        {
+          bool same_points = true;
+          permutation.resize(n);
+          for (std::size_t i = 0; i < n && same_points; ++i)
+            {
+              const auto id = ids[i];
+              same_points =
+                id < built_index_of_id.size() &&
+                built_index_of_id[id] != numbers::invalid_unsigned_int;
+              if (same_points)
+                permutation[i] = built_index_of_id[id];
+            }
+          if (same_points)
+            {
+              ordered_positions.resize(n);
+              ordered_volumes.resize(n);
+              ordered_values.resize(n);
+              ordered_receivers.resize(n);
+              for (std::size_t i = 0; i < n; ++i)
+                {
+                  const unsigned int b = permutation[i];
+                  ordered_positions[b] = positions[i];
+                  ordered_volumes[b]   = volumes[i];
+                  ordered_values[b]    = values[i];
+                  ordered_receivers[b] = is_receiver[i];
+                }
+              ++reorder_count;
+              compute_in_order(local_boxes,
+                               ordered_positions,
+                               ordered_volumes,
+                               ordered_values,
+                               ordered_receivers,
+                               built_ids,
+                               ordered_averages);
+              averages.resize(n);
+              for (std::size_t i = 0; i < n; ++i)
+                averages[i] = ordered_averages[permutation[i]];
+              return;
+            }
+        }
+      compute_in_order(
+        local_boxes, positions, volumes, values, is_receiver, ids, averages);
+    }
+
+
+    template <int dim>
+    void
+    NonlocalAverager<dim>::compute_in_order(
+      const std::vector<BoundingBox<dim>>      &local_boxes,
+      const std::vector<Point<dim>>            &positions,
+      const std::vector<double>                &volumes,
+      const std::vector<double>                &values,
+      const std::vector<bool>                  &is_receiver,
+      const std::vector<types::particle_index> &ids,
+      std::vector<double>                      &averages)
+    {
+      const std::size_t n = positions.size();
+      const bool        rebuild =
         needs_rebuild(local_boxes, positions, is_receiver, ids);
       if (rebuild)
         setup_communication(local_boxes, positions, ids);
@@ -166,6 +229,14 @@ namespace scarp
           built_positions = positions;
           built_receivers = is_receiver;
           lists_valid     = true;
+          built_index_of_id.clear();
+          for (std::size_t i = 0; i < ids.size(); ++i)
+            {
+              if (ids[i] >= built_index_of_id.size())
+                built_index_of_id.resize(ids[i] + 1,
+                                         numbers::invalid_unsigned_int);
+              built_index_of_id[ids[i]] = i;
+            }
           ++rebuild_count;
         }
       else

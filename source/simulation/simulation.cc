@@ -1100,6 +1100,16 @@ namespace scarp
       summary.add("max_damage", last_report.max_damage);
       summary.add("first_damage_time", first_damage_time);
       summary.add("points_removed", n_removed);
+      if (averager)
+        {
+          // How often the non-local lists were rebuilt, reused as they
+          // were, or reused for the same points in a new order.
+          postprocess::JsonObject lists;
+          lists.add("rebuilds", double(averager->n_rebuilds()));
+          lists.add("reuses", double(averager->n_reuses()));
+          lists.add("reorders", double(averager->n_reorders()));
+          summary.add("nonlocal_lists", lists);
+        }
       if (reference_displacement)
         {
           postprocess::JsonObject ref;

@@ -1,8 +1,9 @@
 // Reuse of the neighbour lists (doc/nonlocal.md, "Reuse"): moves below half
 // the skin reuse the lists and give the same averages as a fresh build, also
 // when a pair that was beyond the cut-off at the build has come within it;
-// larger moves, other ids (fewer points, another order), a new receiver,
-// other boxes, invalidate_neighbour_lists() and reinit() rebuild.
+// the same points in another order reuse them through a reordering; larger
+// moves, other ids (fewer points), a new receiver, other boxes,
+// invalidate_neighbour_lists() and reinit() rebuild.
 
 #include <deal.II/base/mpi.h>
 
@@ -144,7 +145,18 @@ run(const WeightType type)
   std::swap(fewer.volumes[0], fewer.volumes[1]);
   std::swap(fewer.values[0], fewer.values[1]);
   std::swap(fewer.ids[0], fewer.ids[1]);
-  checker.step(fewer, true, "points reordered");
+  // The same points in another order (points that changed cells) reuse the
+  // lists through a reordering, unless one also moved more than skin/2.
+  const unsigned int reorders = checker.averager.n_reorders();
+  checker.step(fewer, false, "points reordered");
+  check(checker.averager.n_reorders() == reorders + 1,
+        "the reordered call went through the reordering");
+  std::swap(fewer.positions[2], fewer.positions[3]);
+  std::swap(fewer.volumes[2], fewer.volumes[3]);
+  std::swap(fewer.values[2], fewer.values[3]);
+  std::swap(fewer.ids[2], fewer.ids[3]);
+  fewer.positions[2][0] += 0.51 * skin;
+  checker.step(fewer, true, "reordered, one move > skin/2");
 
   checker.step(fewer, true, "other boxes", cube<dim>(-1., 5.));
   checker.averager.invalidate_neighbour_lists();

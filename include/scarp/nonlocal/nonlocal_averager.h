@@ -139,6 +139,14 @@ namespace scarp
         return reuse_count;
       }
 
+      /// Number of compute() calls that reused the lists for the same points
+      /// in another order (points that changed cells).
+      unsigned int
+      n_reorders() const
+      {
+        return reorder_count;
+      }
+
       /// Number of compute() calls that communicated (all but the local
       /// weight's calls, when there is more than one rank).
       unsigned int
@@ -173,6 +181,16 @@ namespace scarp
 
     private:
       /// Decide (collectively) whether the lists must be rebuilt.
+      /// compute() for points in the order of the last build (or any order
+      /// when the lists are rebuilt).
+      void
+      compute_in_order(const std::vector<BoundingBox<dim>>      &local_boxes,
+                       const std::vector<Point<dim>>            &positions,
+                       const std::vector<double>                &volumes,
+                       const std::vector<double>                &values,
+                       const std::vector<bool>                  &is_receiver,
+                       const std::vector<types::particle_index> &ids,
+                       std::vector<double>                      &averages);
       bool
       needs_rebuild(const std::vector<BoundingBox<dim>>      &local_boxes,
                     const std::vector<Point<dim>>            &positions,
@@ -218,6 +236,13 @@ namespace scarp
       std::vector<types::particle_index> built_ids;
       std::vector<Point<dim>>            built_positions;
       std::vector<bool>                  built_receivers;
+      /// Index in built_ids of each id (invalid: not a point of this rank).
+      std::vector<unsigned int> built_index_of_id;
+      /// Reordering of the input to the built order (see compute()).
+      std::vector<unsigned int> permutation;
+      std::vector<Point<dim>>   ordered_positions;
+      std::vector<double> ordered_volumes, ordered_values, ordered_averages;
+      std::vector<bool>   ordered_receivers;
 
       // Communication pattern: the local indices sent to each destination,
       // and the number of ghosts from each source rank (ascending ranks).
@@ -246,6 +271,7 @@ namespace scarp
 
       unsigned int rebuild_count            = 0;
       unsigned int reuse_count              = 0;
+      unsigned int reorder_count            = 0;
       unsigned int communicating_call_count = 0;
       std::size_t  listed_pair_count        = 0;
       std::size_t  interacting_pair_count   = 0;
