@@ -6,9 +6,11 @@ Reads cliff_after_failure_particles.csv (x, y, damage, x0, y0, volume; written
 directory and, in the reference configuration:
 
 * the failure surface x_f(y0): for each horizontal strip of height --strip,
-  the smallest x0 of the points that moved more than --moved metres (the
-  block seaward of it has detached; the cliff behind it moves elastically,
-  by millimetres);
+  the smallest x0 of the fully damaged points (d >= 0.99; --criterion
+  damage, the default: the band the block detaches along, pre-damaged crack
+  included), or of the points that moved more than --moved metres
+  (--criterion moved: the block seaward of it has detached; the cliff behind
+  it moves elastically, by millimetres);
 * the failed area: the volume of the points that moved more than --moved;
 * the fully damaged area: the volume of the points with damage >= 0.99.
 
@@ -43,10 +45,13 @@ def read_points(directory):
     return [{k: float(v) for k, v in r.items()} for r in rows]
 
 
-def failure_surface(points, moved, strip, y_max):
+def failure_surface(points, criterion, moved, strip, y_max):
     surface = {}
     for p in points:
-        if math.hypot(p["x"] - p["x0"], p["y"] - p["y0"]) <= moved:
+        if criterion == "moved":
+            if math.hypot(p["x"] - p["x0"], p["y"] - p["y0"]) <= moved:
+                continue
+        elif p["damage"] < 0.99:
             continue
         k = int(p["y0"] // strip)
         if (k + 0.5) * strip > y_max:
@@ -60,6 +65,9 @@ def main():
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("runs", nargs="+", metavar="LABEL=DIR")
+    parser.add_argument("--criterion", choices=["damage", "moved"],
+                        default="damage",
+                        help="what marks a failed point (see above)")
     parser.add_argument("--moved", type=float, default=0.1,
                         help="displacement that marks a failed point [m]")
     parser.add_argument("--strip", type=float, default=0.5,
@@ -78,7 +86,8 @@ def main():
         points = read_points(directory)
         y_max = max(p["y0"] for p in points)
         runs.append((label, points,
-                     failure_surface(points, args.moved, args.strip, y_max)))
+                     failure_surface(points, args.criterion, args.moved, args.strip,
+                                     y_max)))
 
     finest = runs[-1][2]
     header = "| y0 [m] | " + " | ".join(r[0] for r in runs) + " |"
@@ -120,8 +129,10 @@ def main():
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(15, 33)
     ax.legend(loc="lower left", fontsize=7)
-    ax.set_title(f"points moved > {args.moved} m at the after-failure snapshot",
-                 fontsize=9)
+    what = ("d >= 0.99" if args.criterion == "damage"
+            else f"moved > {args.moved} m")
+    ax.set_title(f"failure surface (most landward point with {what}) at the "
+                 "after-failure snapshot", fontsize=9)
     fig.tight_layout()
     fig.savefig(args.output, dpi=150)
     print(f"wrote {args.output}")
