@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Compare the failure surfaces of cliff runs at different resolutions.
 
-Reads cliff_after_failure_particles.csv (x, y, damage, x0, y0, volume; written
-<Snapshot after failure> seconds after the failure onset) of each run
-directory and, in the reference configuration:
+Reads one cliff snapshot (x, y, damage, x0, y0, volume) of each run
+directory — cliff_failure_particles.csv, written at the failure onset, by
+default; --snapshot after_failure for the one written <Snapshot after
+failure> seconds later — and, in the reference configuration:
 
 * the failure surface x_f(y0): for each horizontal strip of height --strip,
-  the smallest x0 of the fully damaged points (d >= 0.99; --criterion
-  damage, the default: the band the block detaches along, pre-damaged crack
-  included), or of the points that moved more than --moved metres
+  the smallest x0 of the damaged points (d >= --threshold, 0.99 by default;
+  --criterion damage, the default: the band the block detaches along,
+  pre-damaged crack included), or of the points that moved more than --moved metres
   (--criterion moved: the block seaward of it has detached; the cliff behind
   it moves elastically, by millimetres);
 * the failed area: the volume of the points that moved more than --moved;
@@ -33,25 +34,25 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def read_points(directory):
-    name = f"{directory}/cliff_after_failure_particles.csv"
+def read_points(directory, snapshot):
+    name = f"{directory}/cliff_{snapshot}_particles.csv"
     try:
         with open(name, newline="") as f:
             rows = list(csv.DictReader(line for line in f
                                        if not line.startswith("#")))
     except OSError as e:
-        sys.exit(f"{name}: {e.strerror}; was the run made with "
-                 "<Snapshot after failure> >= 0 and did the cliff fail?")
+        sys.exit(f"{name}: {e.strerror}; did the cliff fail (and, for "
+                 "after_failure, was <Snapshot after failure> >= 0)?")
     return [{k: float(v) for k, v in r.items()} for r in rows]
 
 
-def failure_surface(points, criterion, moved, strip, y_max):
+def failure_surface(points, criterion, threshold, moved, strip, y_max):
     surface = {}
     for p in points:
         if criterion == "moved":
             if math.hypot(p["x"] - p["x0"], p["y"] - p["y0"]) <= moved:
                 continue
-        elif p["damage"] < 0.99:
+        elif p["damage"] < threshold:
             continue
         k = int(p["y0"] // strip)
         if (k + 0.5) * strip > y_max:
@@ -65,9 +66,14 @@ def main():
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("runs", nargs="+", metavar="LABEL=DIR")
+    parser.add_argument("--snapshot", choices=["failure", "after_failure"],
+                        default="failure",
+                        help="which snapshot to compare (see above)")
     parser.add_argument("--criterion", choices=["damage", "moved"],
                         default="damage",
                         help="what marks a failed point (see above)")
+    parser.add_argument("--threshold", type=float, default=0.99,
+                        help="damage that marks a failed point")
     parser.add_argument("--moved", type=float, default=0.1,
                         help="displacement that marks a failed point [m]")
     parser.add_argument("--strip", type=float, default=0.5,
@@ -83,11 +89,11 @@ def main():
         label, _, directory = item.partition("=")
         if not directory:
             sys.exit(f"expected LABEL=DIR, got {item}")
-        points = read_points(directory)
+        points = read_points(directory, args.snapshot)
         y_max = max(p["y0"] for p in points)
         runs.append((label, points,
-                     failure_surface(points, args.criterion, args.moved, args.strip,
-                                     y_max)))
+                     failure_surface(points, args.criterion, args.threshold,
+                                     args.moved, args.strip, y_max)))
 
     finest = runs[-1][2]
     header = "| y0 [m] | " + " | ".join(r[0] for r in runs) + " |"
@@ -100,10 +106,10 @@ def main():
     failed = [sum(p["volume"] for p in r[1]
                   if math.hypot(p["x"] - p["x0"], p["y"] - p["y0"]) > args.moved)
               for r in runs]
-    damaged = [sum(p["volume"] for p in r[1] if p["damage"] >= 0.99)
+    damaged = [sum(p["volume"] for p in r[1] if p["damage"] >= args.threshold)
                for r in runs]
     print("| failed area [m^2] | " + " | ".join(f"{a:.1f}" for a in failed) + " |")
-    print("| d >= 0.99 area [m^2] | " + " | ".join(f"{a:.1f}" for a in damaged)
+    print(f"| d >= {args.threshold} area [m^2] | " + " | ".join(f"{a:.1f}" for a in damaged)
           + " |")
     rms = []
     for r in runs:
@@ -120,19 +126,20 @@ def main():
                     vmin=0, vmax=1, rasterized=True)
     fig.colorbar(sc, ax=ax, label=f"damage ({runs[-1][0]})", shrink=0.7)
     for (label, _, surface), style in zip(runs, ["-", "--", "-.", ":"] * 3):
-        ks = sorted(surface)
-        ax.plot([surface[k] for k in ks], [(k + 0.5) * args.strip for k in ks],
-                style, lw=1.6, label=f"failure surface, {label}",
-                drawstyle="steps-mid")
+        # One point per strip; strips without a failed point leave a gap.
+        ks = range(min(surface), max(surface) + 1) if surface else []
+        ax.plot([surface.get(k, math.nan) for k in ks],
+                [(k + 0.5) * args.strip for k in ks], style, marker=".",
+                lw=1.6, label=f"failure surface, {label}")
     ax.set_xlabel("x0 [m] (reference configuration)")
     ax.set_ylabel("y0 [m]")
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(15, 33)
     ax.legend(loc="lower left", fontsize=7)
-    what = ("d >= 0.99" if args.criterion == "damage"
+    what = (f"d >= {args.threshold}" if args.criterion == "damage"
             else f"moved > {args.moved} m")
-    ax.set_title(f"failure surface (most landward point with {what}) at the "
-                 "after-failure snapshot", fontsize=9)
+    ax.set_title(f"failure surface (most landward point with {what}), "
+                 f"snapshot '{args.snapshot}'", fontsize=9)
     fig.tight_layout()
     fig.savefig(args.output, dpi=150)
     print(f"wrote {args.output}")
