@@ -72,6 +72,9 @@ def main():
             k = next((k for k, x in enumerate(t) if x >= time), None)
             cells.append(f"{v[k]:.2f}" if k is not None else "-")
         print(f"| {time:g} | " + " | ".join(cells) + " |")
+    print("| damage grown > 0.01 m^3/m from [s] | " + " | ".join(
+        next((f"{x:.2f}" for x, y in zip(d[1], d[2]) if y > 0.01), "-")
+        for d in data) + " |")
     print("| failure onset [s] | " + " | ".join(
         f"{d[3]:.2f}" if d[3] is not None else f"> {d[1][-1]:.2f}"
         for d in data) + " |")
