@@ -137,7 +137,7 @@ namespace
       // (the grips): 1e-11 of it is 1e-5 of a chalk cell, the default.
       "subsection Transfer\n  set Small mass cutoff = 1e-11\nend\n" +
       stage_text("pull", t_end);
-    auto sim = make_scene_on<dim>(text, MPI_COMM_WORLD, "bar");
+    auto sim = make_scene<dim>(text, MPI_COMM_WORLD, "bar");
     sim->run_until(t_end);
 
     BarResult r;
@@ -294,5 +294,5 @@ namespace
 int
 main(int argc, char **argv)
 {
-  return run_cases(argc, argv, {{"quick", quick}, {"study", study}});
+  return run_cases_with_args(argc, argv, {{"quick", quick}, {"study", study}});
 }

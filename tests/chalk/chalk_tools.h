@@ -1,27 +1,18 @@
 // Shared pieces of the chalk damage tests (doc/damage_verification.md):
-// scene text for a chalk material, building a scene on a chosen
-// communicator, gathering the material points, and a case dispatcher.
+// scene text for a chalk material and gathering the material points.
+// Building a scene on a chosen communicator, output, checks and the case
+// dispatcher are in common/scene_runner.h.
 #ifndef scarp_tests_chalk_chalk_tools_h
 #define scarp_tests_chalk_chalk_tools_h
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/parameter_handler.h>
 
-#include <scarp/base/parameter_tools.h>
 #include <scarp/materials/chalk.h>
-#include <scarp/simulation/scene_lists.h>
 #include <scarp/simulation/simulation.h>
 
+#include "../common/scene_runner.h"
+
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <functional>
-#include <iomanip>
-#include <iostream>
-#include <map>
-#include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -29,49 +20,14 @@ namespace scarp_chalk_test
 {
   using namespace dealii;
   using namespace scarp;
-
-  /// A number as scene text, without loss.
-  inline std::string
-  num(const double x)
-  {
-    std::ostringstream o;
-    o << std::setprecision(17) << x;
-    return o.str();
-  }
-
-  /// "a, b[, c]" from numbers.
-  inline std::string
-  list(const std::vector<double> &x)
-  {
-    std::string s;
-    for (const double v : x)
-      s += (s.empty() ? "" : ", ") + num(v);
-    return s;
-  }
-
-  /// Print on rank 0 of MPI_COMM_WORLD.
-  inline std::ostream &
-  out()
-  {
-    static std::ostringstream sink;
-    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      return std::cout;
-    sink.str("");
-    return sink;
-  }
-
-  /// Fail the test (non-zero exit on all ranks) unless @p condition.
-  inline void
-  check(const bool condition, const std::string &what)
-  {
-    const bool all = Utilities::MPI::min(condition ? 1 : 0, MPI_COMM_WORLD);
-    out() << (all ? "  ok:   " : "  FAIL: ") << what << std::endl;
-    if (!all)
-      {
-        MPI_Finalize();
-        std::exit(1);
-      }
-  }
+  // Not all of scarp_test: its mesh_text would make the one below ambiguous.
+  using scarp_test::check;
+  using scarp_test::communicator_of;
+  using scarp_test::list;
+  using scarp_test::make_scene;
+  using scarp_test::num;
+  using scarp_test::out;
+  using scarp_test::run_cases_with_args;
 
   /// Parameters of a chalk material (Joss Bay defaults, design note
   /// chalk-model.md section 5).
@@ -117,7 +73,8 @@ namespace scarp_chalk_test
     }
   };
 
-  /// Mesh subsection; @p faces: Left, Right, Bottom, Top.
+  /// Mesh subsection; @p faces: Left, Right, Bottom, Top; with the friction
+  /// coefficient of the walls.
   inline std::string
   mesh_text(const std::vector<double>      &lower,
             const std::vector<double>      &upper,
@@ -125,15 +82,12 @@ namespace scarp_chalk_test
             const std::vector<std::string> &faces,
             const double                    friction = 0.5)
   {
-    static const char *names[] = {"Left", "Right", "Bottom", "Top"};
-    std::string s = "subsection Mesh\n  set Lower corner = " + list(lower) +
-                    "\n  set Upper corner = " + list(upper) +
-                    "\n  set Cell size = " + num(h) +
-                    "\n  subsection Boundary conditions\n";
-    for (unsigned int f = 0; f < faces.size(); ++f)
-      s += "    set " + std::string(names[f]) + " = " + faces[f] + "\n";
-    return s + "    set Friction coefficient = " + num(friction) +
-           "\n  end\nend\n";
+    return scarp_test::mesh_text(lower,
+                                 upper,
+                                 h,
+                                 faces,
+                                 "    set Friction coefficient = " +
+                                   num(friction) + "\n");
   }
 
   /// Body subsection: a box of the named material.
@@ -176,34 +130,6 @@ namespace scarp_chalk_test
            "\n  set Damage = " + (damage ? "true" : "false") +
            "\n  set Damping type = " + damping +
            "\n  set Damping = " + num(coefficient) + "\nend\n";
-  }
-
-  /// Build a simulation from parameter text on @p communicator (the same two
-  /// passes as the scarp command line) and set it up. With MPI_COMM_SELF
-  /// every rank builds its own serial copy of the scene. @p tag keeps the
-  /// scene files of different scenes apart.
-  template <int dim>
-  std::unique_ptr<simulation::Simulation<dim>>
-  make_scene_on(const std::string &text,
-                const MPI_Comm     communicator,
-                const std::string &tag = "scene")
-  {
-    const std::string filename =
-      "chalk_" + tag + "_" +
-      std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) + ".prm";
-    {
-      std::ofstream file(filename);
-      file << text;
-    }
-    const auto       lists = simulation::SceneLists::read(filename);
-    ParameterHandler prm;
-    simulation::Simulation<dim>::declare_parameters(prm, lists);
-    ParameterTools::parse_file(prm, filename);
-    auto sim =
-      std::make_unique<simulation::Simulation<dim>>(communicator, lists);
-    sim->parse_parameters(prm);
-    sim->setup();
-    return sim;
   }
 
   /// What the tests look at of one material point.
@@ -250,9 +176,7 @@ namespace scarp_chalk_test
         for (unsigned int k = 0; k < 6; ++k)
           local.push_back(s.access_raw_entry(k));
       }
-    const MPI_Comm comm =
-      sim.background_grid().dof_handler().get_communicator();
-    const auto                    all = Utilities::MPI::all_gather(comm, local);
+    const auto all = Utilities::MPI::all_gather(communicator_of(sim), local);
     std::vector<PointRecord<dim>> points;
     for (const auto &chunk : all)
       for (std::size_t k = 0; k + n_values <= chunk.size(); k += n_values)
@@ -282,47 +206,6 @@ namespace scarp_chalk_test
                 return false;
               });
     return points;
-  }
-
-  /// Run the named case of @p cases (argv[1]); all of them without one.
-  /// Further arguments go to the case.
-  inline int
-  run_cases(
-    int    argc,
-    char **argv,
-    const std::map<std::string,
-                   std::function<void(const std::vector<std::string> &)>>
-      &cases)
-  {
-    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-    try
-      {
-        std::vector<std::string> args;
-        for (int k = 2; k < argc; ++k)
-          args.push_back(argv[k]);
-        if (argc > 1)
-          {
-            const auto c = cases.find(argv[1]);
-            if (c == cases.end())
-              {
-                std::cerr << "unknown case " << argv[1] << std::endl;
-                return 1;
-              }
-            c->second(args);
-          }
-        else
-          for (const auto &[name, f] : cases)
-            {
-              out() << "== " << name << std::endl;
-              f(args);
-            }
-      }
-    catch (const std::exception &e)
-      {
-        std::cerr << "exception: " << e.what() << std::endl;
-        return 1;
-      }
-    return 0;
   }
 } // namespace scarp_chalk_test
 

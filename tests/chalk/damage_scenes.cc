@@ -104,7 +104,7 @@ namespace
       "subsection Transfer\n  set Velocity transfer = FLIP\n"
       "  set FLIP fraction = " +
       num(flip_fraction) + "\n  set Update scheme = MUSL\nend\n";
-    auto sim = make_scene_on<dim>(text, MPI_COMM_WORLD, "energy");
+    auto sim = make_scene<dim>(text, MPI_COMM_WORLD, "energy");
     sim->run();
     const auto  c = read_statistics("output_overhang/statistics.csv");
     const auto &S = c.at("strain_energy"), &G = c.at("gravitational_energy"),
@@ -221,8 +221,8 @@ namespace
     const std::string text =
       overhang_scene(overhang_chalk(), 0.125, "run", "", 1.75) +
       stage_text("run", t_end);
-    auto parallel = make_scene_on<dim>(text, MPI_COMM_WORLD, "parallel");
-    auto serial   = make_scene_on<dim>(text, MPI_COMM_SELF, "serial");
+    auto parallel = make_scene<dim>(text, MPI_COMM_WORLD, "parallel");
+    auto serial   = make_scene<dim>(text, MPI_COMM_SELF, "serial");
     parallel->run_until(t_end);
     serial->run_until(t_end);
     const auto a            = gather_points(*parallel);
@@ -303,7 +303,7 @@ namespace
       region_text("all", {0, 0, 6, 3.5}) +
       "subsection Physics\n  set Gravity = 0, -9.81\nend\n" +
       stage_text("run", t_end);
-    auto       sim    = make_scene_on<dim>(text, MPI_COMM_WORLD, "damaged");
+    auto       sim    = make_scene<dim>(text, MPI_COMM_WORLD, "damaged");
     const auto extent = [&](const std::vector<PointRecord<dim>> &points,
                             double                              &top,
                             double                              &base) {
@@ -373,7 +373,7 @@ namespace
       region_text("crack", {0, 0, 0.25, 0.25}) +
       stage_text("gravity", 0.05, false, false) +
       stage_text("collapse", 0.1, true, true);
-    auto       sim     = make_scene_on<dim>(text, MPI_COMM_WORLD, "stages");
+    auto       sim     = make_scene<dim>(text, MPI_COMM_WORLD, "stages");
     const auto summary = [&](const std::string &tag,
                              unsigned int      &n_pre,
                              bool              &frozen,
@@ -419,10 +419,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  return run_cases(argc,
-                   argv,
-                   {{"energy_balance", energy_balance},
-                    {"parallel_serial", parallel_serial},
-                    {"fully_damaged", fully_damaged},
-                    {"stage_switches", stage_switches}});
+  return run_cases_with_args(argc,
+                             argv,
+                             {{"energy_balance", energy_balance},
+                              {"parallel_serial", parallel_serial},
+                              {"fully_damaged", fully_damaged},
+                              {"stage_switches", stage_switches}});
 }

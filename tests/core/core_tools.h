@@ -1,5 +1,7 @@
 // Shared pieces of the core verification tests (doc/verification_core.md):
-// scene text pieces, measures on material points, and a case dispatcher.
+// scene text pieces and measures on material points. Building and running
+// scenes, sums over points and the case dispatcher are in
+// common/scene_runner.h.
 #ifndef scarp_tests_core_core_tools_h
 #define scarp_tests_core_core_tools_h
 
@@ -11,33 +13,11 @@
 #include "../common/scene_runner.h"
 
 #include <cmath>
-#include <functional>
-#include <iomanip>
-#include <map>
-#include <sstream>
 #include <string>
+#include <vector>
 
 namespace scarp_test
 {
-  /// A number as scene text, without loss.
-  inline std::string
-  num(const double x)
-  {
-    std::ostringstream o;
-    o << std::setprecision(17) << x;
-    return o.str();
-  }
-
-  /// "a, b[, c]" from numbers.
-  inline std::string
-  list(const std::vector<double> &x)
-  {
-    std::string s;
-    for (const double v : x)
-      s += (s.empty() ? "" : ", ") + num(v);
-    return s;
-  }
-
   /// The header of a scene with one material and one body.
   inline std::string
   scene_header(const unsigned int dim,
@@ -60,24 +40,6 @@ namespace scarp_test
            "\n  set Density = " + num(rho) +
            "\n  subsection Elasticity\n    set Young's modulus = " + num(E) +
            "\n    set Poisson's ratio = " + num(nu) + "\n  end\nend\n";
-  }
-
-  /// Mesh subsection; @p faces: Left, Right, Bottom, Top[, Front, Back].
-  inline std::string
-  mesh_text(const std::vector<double>      &lower,
-            const std::vector<double>      &upper,
-            const double                    h,
-            const std::vector<std::string> &faces)
-  {
-    static const char *names[] = {
-      "Left", "Right", "Bottom", "Top", "Front", "Back"};
-    std::string s = "subsection Mesh\n  set Lower corner = " + list(lower) +
-                    "\n  set Upper corner = " + list(upper) +
-                    "\n  set Cell size = " + num(h) +
-                    "\n  subsection Boundary conditions\n";
-    for (unsigned int f = 0; f < faces.size(); ++f)
-      s += "    set " + std::string(names[f]) + " = " + faces[f] + "\n";
-    return s + "  end\nend\n";
   }
 
   /// Body subsection with a box or ball shape, velocity and stress
@@ -165,40 +127,6 @@ namespace scarp_test
     return sum_over_points<dim>(sim, [&](const double *p, const Point<dim> &) {
       return p[layout.reference_volume] * hencky_energy_density(layout, p);
     });
-  }
-
-  /// Run the named case of @p cases (argv[1]); all of them without one.
-  inline int
-  run_cases(int                                                 argc,
-            char                                              **argv,
-            const std::map<std::string, std::function<void()>> &cases)
-  {
-    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-    try
-      {
-        if (argc > 1)
-          {
-            const auto c = cases.find(argv[1]);
-            if (c == cases.end())
-              {
-                std::cerr << "unknown case " << argv[1] << std::endl;
-                return 1;
-              }
-            c->second();
-          }
-        else
-          for (const auto &[name, f] : cases)
-            {
-              out() << "== " << name << std::endl;
-              f();
-            }
-      }
-    catch (const std::exception &e)
-      {
-        std::cerr << "exception: " << e.what() << std::endl;
-        return 1;
-      }
-    return 0;
   }
 } // namespace scarp_test
 

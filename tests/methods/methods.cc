@@ -6,22 +6,11 @@
 #include "../common/scene_runner.h"
 
 #include <cmath>
-#include <map>
-#include <sstream>
 #include <string>
 
 namespace
 {
   using namespace scarp_test;
-
-  std::string
-  num(const double x)
-  {
-    std::ostringstream o;
-    o.precision(17);
-    o << x;
-    return o.str();
-  }
 
   std::string
   transfer(const std::string &shape,
@@ -243,36 +232,11 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize        mpi(argc, argv, 1);
-  const std::map<std::string, void (*)()> cases = {
-    {"mms_order", mms_order},
-    {"bar_order", bar_order},
-    {"gimp_crossing", gimp_crossing},
-    {"unstable_cfl", unstable_cfl},
-    {"gimp_refinement", gimp_refinement}};
-  try
-    {
-      if (argc > 1)
-        {
-          const auto c = cases.find(argv[1]);
-          if (c == cases.end())
-            {
-              std::cerr << "unknown case " << argv[1] << std::endl;
-              return 1;
-            }
-          c->second();
-        }
-      else
-        for (const auto &[name, f] : cases)
-          {
-            out() << "== " << name << std::endl;
-            f();
-          }
-    }
-  catch (const std::exception &e)
-    {
-      std::cerr << "exception: " << e.what() << std::endl;
-      return 1;
-    }
-  return 0;
+  return run_cases(argc,
+                   argv,
+                   {{"mms_order", mms_order},
+                    {"bar_order", bar_order},
+                    {"gimp_crossing", gimp_crossing},
+                    {"unstable_cfl", unstable_cfl},
+                    {"gimp_refinement", gimp_refinement}});
 }
