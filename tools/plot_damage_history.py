@@ -54,7 +54,7 @@ def main():
     parser.add_argument("--output", required=True)
     args = parser.parse_args()
 
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, (ax, zoom) = plt.subplots(1, 2, figsize=(10, 4))
     print("| t since collapse start [s] | "
           + " | ".join(r.partition("=")[0] for r in args.runs) + " |")
     print("|" + "---|" * (len(args.runs) + 1))
@@ -64,6 +64,7 @@ def main():
         t, v, onset = read(directory, args.failure_speed)
         data.append((label, t, v, onset))
         line, = ax.plot(t, v, label=label)
+        zoom.plot(t, v, label=label, color=line.get_color())
         if onset is not None:
             ax.axvline(onset, ls=":", color=line.get_color())
     for time in args.times:
@@ -85,6 +86,16 @@ def main():
     ax.legend(fontsize=8)
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
+    # The right panel: up to the end of the shortest run.
+    t_end = min(d[1][-1] for d in data)
+    v_end = max((y for d in data for x, y in zip(d[1], d[2]) if x <= t_end),
+                default=1.0)
+    zoom.set_xlim(0, t_end)
+    zoom.set_ylim(0, 1.05 * v_end if v_end > 0 else 1.0)
+    zoom.set_xlabel("time since the start of the collapse stage [s]")
+    zoom.set_title(f"up to the end of the shortest run ({t_end:.2f} s)",
+                   fontsize=9)
+    zoom.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(args.output, dpi=150)
     print(f"wrote {args.output}")
