@@ -16,11 +16,14 @@ namespace scarp
     BackgroundGrid<dim>::BackgroundGrid(MPI_Comm communicator)
       : communicator(communicator)
       , tria(communicator,
-             Triangulation<dim>::maximum_smoothing,
+             // At most one level between cells that share a vertex: the
+             // GIMP patch of a cell is then the cells at its vertices.
+             Triangulation<dim>::limit_level_difference_at_vertices,
              parallel::distributed::Triangulation<dim>::default_setting)
       , fe_q(1)
       , dofs(tria)
-    {}
+    {
+    }
 
 
     template <int dim>
@@ -43,11 +46,22 @@ namespace scarp
                         "Edge length of the square (cubic) coarse cells [m].");
       BoundaryConditions<dim>::declare_parameters(prm);
       prm.enter_subsection("Refinement");
-      prm.declare_entry("Adaptive refinement",
-                        "false",
-                        Patterns::Bool(),
-                        "Refine the mesh where the material damages (and "
-                        "coarsen it where damage has passed).");
+      prm.declare_entry(
+        "Adaptive refinement",
+        "false",
+        Patterns::Bool(),
+        "Refine the mesh ahead of and around the failure (needs a material "
+        "with damage): cells with a point whose damage exceeds <Damage "
+        "limit>, or whose non-local driver exceeds <Driver fraction> of its "
+        "damage threshold, and every cell within <Buffer> non-local radii of "
+        "them, are refined up to <Maximum level>; points of a refined cell "
+        "are split into 2^dim. Cells are never coarsened (points are not "
+        "merged), so the refined region only grows.");
+      prm.declare_entry("Minimum level",
+                        "0",
+                        Patterns::Integer(0, 6),
+                        "Every cell is refined to this level at set-up, "
+                        "before the bodies are seeded.");
       prm.declare_entry("Maximum level",
                         "1",
                         Patterns::Integer(0, 6),
@@ -55,13 +69,28 @@ namespace scarp
       prm.declare_entry("Damage limit",
                         "0.01",
                         Patterns::Double(0., 1.),
-                        "Cells holding a point whose damage exceeds this (or "
-                        "next to such a cell) are refined.");
+                        "Cells holding a point whose damage exceeds this are "
+                        "refined.");
+      prm.declare_entry(
+        "Driver fraction",
+        "0.5",
+        Patterns::Double(0.),
+        "Cells holding a point whose non-local driver Ybar exceeds this "
+        "fraction of its damage threshold max(sigma_f, kappa) are refined, "
+        "so that cells refine before damage starts. 0 switches the "
+        "criterion off.");
+      prm.declare_entry("Buffer",
+                        "1",
+                        Patterns::Double(0.),
+                        "Cells within this many non-local cut-off radii of a "
+                        "flagged cell are refined too (at least 1: the "
+                        "average reaches that far).");
       prm.declare_entry("Initial levels",
                         "0",
                         Patterns::Integer(0, 6),
-                        "Refine the cells inside <Initial region> this many "
-                        "times before the bodies are seeded.");
+                        "Cells whose centre is inside <Initial region> are "
+                        "refined to this level at set-up, before the bodies "
+                        "are seeded (a-priori region).");
       prm.declare_entry("Initial region",
                         dim == 2 ? "0, 0, 0, 0" : "0, 0, 0, 0, 0, 0",
                         *ParameterTools::double_list(2 * dim),
@@ -106,13 +135,17 @@ namespace scarp
       box = BoundingBox<dim>(std::make_pair(lower, upper));
       boundary.parse_parameters(prm);
       prm.enter_subsection("Refinement");
-      adaptive_refinement     = prm.get_bool("Adaptive refinement");
-      max_refinement_level    = prm.get_integer("Maximum level");
-      refinement_damage_limit = prm.get_double("Damage limit");
-      refinement_interval     = prm.get_integer("Interval");
-      initial_levels          = prm.get_integer("Initial levels");
+      adaptive_refinement        = prm.get_bool("Adaptive refinement");
+      min_refinement_level       = prm.get_integer("Minimum level");
+      max_refinement_level       = prm.get_integer("Maximum level");
+      refinement_damage_limit    = prm.get_double("Damage limit");
+      refinement_driver_fraction = prm.get_double("Driver fraction");
+      refinement_buffer          = prm.get_double("Buffer");
+      refinement_interval        = prm.get_integer("Interval");
+      initial_levels             = prm.get_integer("Initial levels");
       {
-        const auto  c = ParameterTools::get_doubles(prm, "Initial region", 2 * dim);
+        const auto c =
+          ParameterTools::get_doubles(prm, "Initial region", 2 * dim);
         Point<dim> a, b;
         for (unsigned int d = 0; d < dim; ++d)
           {
@@ -121,9 +154,24 @@ namespace scarp
           }
         initial_region = BoundingBox<dim>(std::make_pair(a, b));
       }
-      if (initial_levels > max_refinement_level && adaptive_refinement)
-        throw ScarpError("Mesh/Refinement: <Initial levels> exceeds <Maximum "
-                         "level>.");
+      if (adaptive_refinement)
+        {
+          if (initial_levels > max_refinement_level)
+            throw ScarpError("Mesh/Refinement: <Initial levels> (" +
+                             std::to_string(initial_levels) +
+                             ") exceeds <Maximum level> (" +
+                             std::to_string(max_refinement_level) + ").");
+          if (min_refinement_level > max_refinement_level)
+            throw ScarpError("Mesh/Refinement: <Minimum level> (" +
+                             std::to_string(min_refinement_level) +
+                             ") exceeds <Maximum level> (" +
+                             std::to_string(max_refinement_level) + ").");
+          if (refinement_buffer < 1)
+            throw ScarpError("Mesh/Refinement: <Buffer> = " +
+                             std::to_string(refinement_buffer) +
+                             " is below 1: the non-local average of a "
+                             "flagged point reaches one cut-off radius.");
+        }
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -135,17 +183,22 @@ namespace scarp
     {
       std::vector<unsigned int> repetitions(dim);
       for (unsigned int d = 0; d < dim; ++d)
-        repetitions[d] = static_cast<unsigned int>(
-          std::round(box.side_length(d) / cell_size));
-      GridGenerator::subdivided_hyper_rectangle(tria,
-                                                repetitions,
-                                                box.get_boundary_points().first,
-                                                box.get_boundary_points().second,
-                                                /*colorize=*/true);
-      for (unsigned int level = 0; level < initial_levels; ++level)
+        repetitions[d] =
+          static_cast<unsigned int>(std::round(box.side_length(d) / cell_size));
+      GridGenerator::subdivided_hyper_rectangle(
+        tria,
+        repetitions,
+        box.get_boundary_points().first,
+        box.get_boundary_points().second,
+        /*colorize=*/true);
+      if (min_refinement_level > 0)
+        tria.refine_global(min_refinement_level);
+      for (unsigned int level = min_refinement_level; level < initial_levels;
+           ++level)
         {
           for (const auto &cell : tria.active_cell_iterators())
             if (cell->is_locally_owned() &&
+                static_cast<unsigned int>(cell->level()) < initial_levels &&
                 initial_region.point_inside(cell->center()))
               cell->set_refine_flag();
           tria.execute_coarsening_and_refinement();

@@ -2,7 +2,6 @@
 #include <deal.II/lac/vector.h>
 
 #include <scarp/base/exceptions.h>
-#include <scarp/transfer/gimp_shape.h>
 #include <scarp/transfer/mpm_transfer.h>
 #include <scarp/transfer/q1_shape.h>
 
@@ -122,133 +121,127 @@ namespace scarp
                           &velocity_new[d],
                           &velocity_remapped[d]})
           v->reinit(mass);
-      patch_dofs.clear();
-      if (parameters.shape_functions == ShapeFunctions::gimp)
-        build_gimp_patches();
+      patches.reinit(grid.dof_handler(), grid.constraints());
+      compute_node_cutoffs();
     }
 
 
     template <int dim>
     void
-    MpmTransfer<dim>::build_gimp_patches()
+    MpmTransfer<dim>::compute_node_cutoffs()
     {
-      if (grid.adaptive_refinement)
-        throw ScarpError(
-          "Transfer: <Shape functions> = GIMP needs a mesh without hanging "
-          "nodes; switch off Mesh/Refinement/<Adaptive refinement>, or use "
-          "<Shape functions> = Q1.");
-      const double     h     = grid.minimum_cell_size();
-      const Point<dim> lower = grid.domain().get_boundary_points().first;
-      using Key              = std::array<long, dim>;
-      const auto key_of      = [&](const Point<dim> &x) {
-        Key k;
-        for (unsigned int d = 0; d < dim; ++d)
-          k[d] = std::lround((x[d] - lower[d]) / h);
-        return k;
-      };
-      // Vertex dofs of every cell this rank sees (owned and ghost).
-      std::map<Key, types::global_dof_index> node_dof;
+      // The cutoff of a node scales with the volume of the smallest cell
+      // at it: a node of a refined region gets 1/2^dim of the mass per
+      // level, and a global cutoff of the coarse (fine) size would empty
+      // (keep) its nodes wrongly.
+      const IndexSet &owned = grid.locally_owned_dofs();
+      node_cutoff.assign(owned.n_elements(),
+                         std::numeric_limits<double>::max());
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
-        {
-          if (cell->is_artificial())
-            continue;
-          for (unsigned int d = 0; d < dim; ++d)
-            if (std::abs(cell->extent_in_direction(d) - h) > 1e-8 * h)
-              throw ScarpError(
-                "Transfer: <Shape functions> = GIMP needs a uniform mesh "
-                "(all cells of one size, no hanging nodes); this mesh has "
-                "cells of different sizes (initial or adaptive refinement). "
-                "Use <Shape functions> = Q1.");
-          for (const unsigned int v : cell->vertex_indices())
-            node_dof[key_of(cell->vertex(v))] = cell->vertex_dof_index(v, 0);
-        }
-      constexpr unsigned int n = GimpShape<dim>::n;
-      patch_dofs.assign(
-        grid.dof_handler().get_triangulation().n_active_cells() * n,
-        numbers::invalid_dof_index);
-      for (const auto &cell : grid.dof_handler().active_cell_iterators())
-        {
-          if (!cell->is_locally_owned())
-            continue;
-          const Key k0 = key_of(cell->vertex(0));
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              Key k = k0;
-              for (unsigned int d = 0; d < dim; ++d)
-                k[d] += GimpShape<dim>::offset(i, d);
-              const auto it = node_dof.find(k);
-              if (it != node_dof.end())
-                patch_dofs[cell->active_cell_index() * n + i] = it->second;
-            }
-        }
+        if (!cell->is_artificial())
+          {
+            const double h      = cell->vertex(1)[0] - cell->vertex(0)[0];
+            const double cutoff = mass_cutoff_density * std::pow(h, dim);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const types::global_dof_index dof =
+                  cell->vertex_dof_index(v, 0);
+                if (owned.is_element(dof))
+                  {
+                    double &c = node_cutoff[owned.index_within_set(dof)];
+                    c         = std::min(c, cutoff);
+                  }
+              }
+          }
     }
 
 
     template <int dim>
-    template <class Shape>
     void
     MpmTransfer<dim>::cell_nodes(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       double                                               &h,
       Point<dim>                                           &x0,
-      std::vector<types::global_dof_index>                 &dofs) const
+      std::vector<types::global_dof_index>                 &dofs,
+      std::vector<Point<dim>>                              &positions,
+      const typename GimpPatches<dim>::Patch              *&patch)
     {
       // Cells are axis-aligned squares (cubes): the edge is the distance of
       // the first two vertices, which is cheaper than extent_in_direction().
       x0 = cell->vertex(0);
       h  = cell->vertex(1)[0] - x0[0];
-      if constexpr (std::is_same_v<Shape, GimpShape<dim>>)
+      if (parameters.shape_functions == ShapeFunctions::gimp)
         {
-          const types::global_dof_index *patch =
-            patch_dofs.data() + cell->active_cell_index() * Shape::n;
-          for (unsigned int i = 0; i < Shape::n; ++i)
-            dofs[i] = patch[i];
+          patch     = &patches.patch(cell);
+          dofs      = patch->node_dofs;
+          positions = patch->node_positions;
         }
       else
-        cell->get_dof_indices(dofs);
+        {
+          patch = nullptr;
+          dofs.resize(Q1Shape<dim>::n);
+          positions.resize(Q1Shape<dim>::n);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+            for (unsigned int d = 0; d < dim; ++d)
+              positions[i][d] = x0[d] + h * Q1Shape<dim>::offset(i, d);
+        }
     }
 
 
     template <int dim>
     void
-    MpmTransfer<dim>::particles_to_grid(const double          dt,
-                                        const Tensor<1, dim> &gravity,
+    MpmTransfer<dim>::shape_at(const typename GimpPatches<dim>::Patch *patch,
+                               const Point<dim>                       &xi,
+                               const Point<dim>                       &x,
+                               const double                            h,
+                               const double                            V0,
+                               std::vector<double>                    &value,
+                               std::vector<Tensor<1, dim>> &gradient) const
+    {
+      if (patch)
+        {
+          double l[dim];
+          gimp_half_width<dim>(V0, h, x, grid.domain(), l);
+          GimpPatches<dim>::evaluate(*patch, x, l, value, gradient);
+          return;
+        }
+      Q1Shape<dim> q1;
+      q1.evaluate(xi, h);
+      value.resize(Q1Shape<dim>::n);
+      gradient.resize(Q1Shape<dim>::n);
+      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+        {
+          value[i]    = q1.value[i];
+          gradient[i] = q1.gradient[i];
+        }
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::particles_to_grid(const Tensor<1, dim> &gravity,
                                         const bool            momentum_only)
     {
-      (void)dt;
-      if (parameters.shape_functions == ShapeFunctions::gimp)
-        particles_to_grid_impl<GimpShape<dim>>(gravity, momentum_only);
-      else
-        particles_to_grid_impl<Q1Shape<dim>>(gravity, momentum_only);
-    }
-
-
-    template <int dim>
-    template <class Shape>
-    void
-    MpmTransfer<dim>::particles_to_grid_impl(const Tensor<1, dim> &gravity,
-                                             const bool momentum_only)
-    {
-      constexpr bool gimp = std::is_same_v<Shape, GimpShape<dim>>;
-      mass                = 0;
+      mass = 0;
       for (unsigned int d = 0; d < dim; ++d)
         {
           momentum[d] = 0;
           force[d]    = 0;
         }
-      constexpr unsigned int                  n = Shape::n;
-      dealii::Vector<double>                  local_mass(n);
+      dealii::Vector<double>                  local_mass;
       std::array<dealii::Vector<double>, dim> local_momentum, local_force;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          local_momentum[d].reinit(n);
-          local_force[d].reinit(n);
-        }
-      std::vector<types::global_dof_index> dofs(n);
-      Shape                                shape;
-      Point<dim>                           node[n];
-      const bool                           apic = layout.has_affine;
-      const bool no_constraints = grid.constraints().n_constraints() == 0;
+      std::vector<types::global_dof_index>    dofs;
+      std::vector<Point<dim>>                 node;
+      std::vector<double>                     value;
+      std::vector<Tensor<1, dim>>             gradient;
+      const bool                              apic = layout.has_affine;
+      // GIMP patch nodes are unconstrained (the patch resolved the hanging
+      // ones); Q1 cells on a mesh with hanging nodes go through the
+      // constraints.
+      const bool add_directly =
+        parameters.shape_functions == ShapeFunctions::gimp ||
+        grid.constraints().n_constraints() == 0;
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
@@ -256,39 +249,27 @@ namespace scarp
           const auto &particles = occupied.particles;
           double      h;
           Point<dim>  x0;
-          cell_nodes<Shape>(cell, h, x0, dofs);
-          if (apic)
-            for (unsigned int i = 0; i < n; ++i)
-              for (unsigned int d = 0; d < dim; ++d)
-                node[i][d] = x0[d] + h * Shape::offset(i, d);
-          local_mass = 0;
+          const typename GimpPatches<dim>::Patch *patch;
+          cell_nodes(cell, h, x0, dofs, node, patch);
+          const unsigned int n = dofs.size();
+          local_mass.reinit(n);
           for (unsigned int d = 0; d < dim; ++d)
             {
-              local_momentum[d] = 0;
-              local_force[d]    = 0;
+              local_momentum[d].reinit(n);
+              local_force[d].reinit(n);
             }
           for (const auto &particle : particles)
             {
-              const double *p  = particle.get_properties().data();
-              const auto    xi = particle.get_reference_location();
-              if constexpr (gimp)
-                {
-                  double l[dim];
-                  gimp_half_width<dim>(p[layout.reference_volume],
-                                       h,
-                                       x0 + h * xi,
-                                       grid.domain(),
-                                       l);
-                  shape.evaluate(xi, h, l);
-                }
-              else
-                shape.evaluate(xi, h);
+              const double    *p  = particle.get_properties().data();
+              const auto       xi = particle.get_reference_location();
+              const Point<dim> xp = x0 + h * xi;
+              shape_at(
+                patch, xi, xp, h, p[layout.reference_volume], value, gradient);
               const double         m = p[layout.mass];
               const Tensor<1, dim> v = layout.get_vector(p, layout.velocity);
               Tensor<2, dim>       C;
               if (apic)
                 C = layout.get_matrix(p, layout.affine);
-              const Point<dim> xp = x0 + h * xi;
               if (momentum_only)
                 {
                   // The MUSL remap maps the point velocities only, also
@@ -299,11 +280,10 @@ namespace scarp
                   // empty cells (vibrating bar, rotating disk).
                   for (unsigned int i = 0; i < n; ++i)
                     {
-                      const double   w  = shape.value[i] * m;
-                      Tensor<1, dim> vi = v;
+                      const double w = value[i] * m;
                       local_mass(i) += w;
                       for (unsigned int d = 0; d < dim; ++d)
-                        local_momentum[d](i) += w * vi[d];
+                        local_momentum[d](i) += w * v[d];
                     }
                   continue;
                 }
@@ -322,12 +302,12 @@ namespace scarp
                 }
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  const double   w  = shape.value[i] * m;
+                  const double   w  = value[i] * m;
                   Tensor<1, dim> vi = v;
                   if (apic)
                     vi += C * (node[i] - xp);
                   const Tensor<1, dim> f =
-                    -volume * stress_times<dim>(sigma, shape.gradient[i]) +
+                    -volume * stress_times<dim>(sigma, gradient[i]) +
                     w * acceleration;
                   local_mass(i) += w;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -337,14 +317,10 @@ namespace scarp
                     }
                 }
             }
-          if (gimp || no_constraints)
+          if (add_directly)
             {
-              // No hanging nodes (GIMP needs a uniform mesh): add directly;
-              // GIMP patch nodes outside the mesh (invalid) get nothing.
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  if (dofs[i] == numbers::invalid_dof_index)
-                    continue;
                   mass(dofs[i]) += local_mass(i);
                   for (unsigned int d = 0; d < dim; ++d)
                     {
@@ -389,7 +365,7 @@ namespace scarp
       for (unsigned int k = 0; k < n_owned; ++k)
         {
           const double m = mass.local_element(k);
-          if (!(m > mass_cutoff))
+          if (!(m > node_cutoff[k]))
             {
               // A nearly empty node keeps the (bounded) mass-weighted
               // velocity of its points and falls with gravity, but takes no
@@ -437,7 +413,7 @@ namespace scarp
         grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
       if (damping.type != Damping::Type::none)
         for (unsigned int k = 0; k < n_owned; ++k)
-          if (mass.local_element(k) > mass_cutoff)
+          if (mass.local_element(k) > node_cutoff[k])
             for (unsigned int d = 0; d < dim; ++d)
               damping_work += dt * force[d].local_element(k) * 0.5 *
                               (velocity_old[d].local_element(k) +
@@ -459,7 +435,7 @@ namespace scarp
     void
     MpmTransfer<dim>::remap_momentum(StepReport &report)
     {
-      particles_to_grid(0., Tensor<1, dim>(), /*momentum_only=*/true);
+      particles_to_grid(Tensor<1, dim>(), /*momentum_only=*/true);
       const unsigned int n_owned = mass.locally_owned_size();
       for (unsigned int k = 0; k < n_owned; ++k)
         {
@@ -536,47 +512,16 @@ namespace scarp
       DamagePoints<dim>             *damage_points,
       const Tensor<1, dim>          &gravity)
     {
-      if (parameters.shape_functions == ShapeFunctions::gimp)
-        grid_to_particles_impl<GimpShape<dim>>(dt,
-                                               update_positions_and_velocities,
-                                               update_stress,
-                                               stress_velocity,
-                                               report,
-                                               damage_points,
-                                               gravity);
-      else
-        grid_to_particles_impl<Q1Shape<dim>>(dt,
-                                             update_positions_and_velocities,
-                                             update_stress,
-                                             stress_velocity,
-                                             report,
-                                             damage_points,
-                                             gravity);
-    }
-
-
-    template <int dim>
-    template <class Shape>
-    void
-    MpmTransfer<dim>::grid_to_particles_impl(
-      const double                   dt,
-      const bool                     update_positions_and_velocities,
-      const bool                     update_stress,
-      const std::array<Vector, dim> &stress_velocity,
-      StepReport                    &report,
-      DamagePoints<dim>             *damage_points,
-      const Tensor<1, dim>          &gravity)
-    {
-      constexpr bool         gimp = std::is_same_v<Shape, GimpShape<dim>>;
-      constexpr unsigned int n    = Shape::n;
-      std::vector<types::global_dof_index> dofs(n);
-      Shape                                shape;
+      std::vector<types::global_dof_index> dofs;
+      std::vector<Point<dim>>              node;
+      std::vector<double>                  value;
+      std::vector<Tensor<1, dim>>          gradient;
       const double                         alpha  = parameters.flip_fraction;
       const bool                           apic   = layout.has_affine;
       const BoundingBox<dim>              &domain = grid.domain();
       std::vector<Batch<dim>>              batches(materials.size());
-      Tensor<1, dim>                       v_new[n], v_old[n], v_stress[n];
-      bool                                 empty[n];
+      std::vector<Tensor<1, dim>>          v_new, v_old, v_stress;
+      std::vector<bool>                    empty;
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
@@ -584,25 +529,23 @@ namespace scarp
           auto        particles = occupied.particles;
           double      h;
           Point<dim>  x0;
-          cell_nodes<Shape>(cell, h, x0, dofs);
+          const typename GimpPatches<dim>::Patch *patch;
+          cell_nodes(cell, h, x0, dofs, node, patch);
+          const unsigned int n = dofs.size();
+          v_new.resize(n);
+          v_old.resize(n);
+          v_stress.resize(n);
+          empty.resize(n);
           // A node no point gives mass to (a point on a cell edge has zero
           // weight but a non-zero gradient there) knows no velocity; it takes
           // part in gradients with the point's own interpolated velocity,
           // which keeps sum_i grad S_i = 0 and uniform motion strain-free.
           for (unsigned int i = 0; i < n; ++i)
-            empty[i] = dofs[i] != numbers::invalid_dof_index &&
-                       mass(dofs[i]) == 0. &&
+            empty[i] = mass(dofs[i]) == 0. &&
                        !grid.constraints().is_constrained(dofs[i]);
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                if (gimp && dofs[i] == numbers::invalid_dof_index)
-                  {
-                    v_new[i][d]    = 0;
-                    v_old[i][d]    = 0;
-                    v_stress[i][d] = 0;
-                    continue;
-                  }
                 v_new[i][d]    = velocity_new[d](dofs[i]);
                 v_old[i][d]    = velocity_old[d](dofs[i]);
                 v_stress[i][d] = stress_velocity[d](dofs[i]);
@@ -614,28 +557,25 @@ namespace scarp
             {
               double    *p  = particle.get_properties().data();
               const auto xi = particle.get_reference_location();
-              if constexpr (gimp)
-                {
-                  double l[dim];
-                  gimp_half_width<dim>(
-                    p[layout.reference_volume], h, x0 + h * xi, domain, l);
-                  shape.evaluate(xi, h, l);
-                }
-              else
-                shape.evaluate(xi, h);
+              shape_at(patch,
+                       xi,
+                       x0 + h * xi,
+                       h,
+                       p[layout.reference_volume],
+                       value,
+                       gradient);
               if (update_positions_and_velocities)
                 {
                   Tensor<1, dim> v_grid, dv;
                   Tensor<2, dim> grad_v;
                   for (unsigned int i = 0; i < n; ++i)
                     {
-                      v_grid += shape.value[i] * v_new[i];
-                      dv += shape.value[i] * (v_new[i] - v_old[i]);
+                      v_grid += value[i] * v_new[i];
+                      dv += value[i] * (v_new[i] - v_old[i]);
                     }
                   for (unsigned int i = 0; i < n; ++i)
                     if (!empty[i])
-                      grad_v +=
-                        outer_product(v_new[i] - v_grid, shape.gradient[i]);
+                      grad_v += outer_product(v_new[i] - v_grid, gradient[i]);
                   Tensor<1, dim> v;
                   if (apic)
                     {
@@ -675,12 +615,11 @@ namespace scarp
                 {
                   Tensor<1, dim> v_point;
                   for (unsigned int i = 0; i < n; ++i)
-                    v_point += shape.value[i] * v_stress[i];
+                    v_point += value[i] * v_stress[i];
                   Tensor<2, dim> L;
                   for (unsigned int i = 0; i < n; ++i)
                     if (!empty[i])
-                      L +=
-                        outer_product(v_stress[i] - v_point, shape.gradient[i]);
+                      L += outer_product(v_stress[i] - v_point, gradient[i]);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;
@@ -867,7 +806,7 @@ namespace scarp
       if (damage_points)
         damage_points->clear();
       find_occupied_cells();
-      particles_to_grid(dt, gravity, false);
+      particles_to_grid(gravity, false);
       solve_grid(dt, damping, report);
       if (parameters.scheme == UpdateScheme::usl)
         grid_to_particles(

@@ -116,11 +116,17 @@ namespace scarp
       unsigned int     initial_levels = 0;
       BoundingBox<dim> initial_region;
 
-      /// Adaptive refinement settings.
-      bool         adaptive_refinement     = false;
-      unsigned int max_refinement_level    = 0;
-      unsigned int refinement_interval     = 10;
-      double       refinement_damage_limit = 0.;
+      /// Level every cell has at set-up.
+      unsigned int min_refinement_level = 0;
+
+      /// Adaptive refinement settings (see the entries of Mesh/Refinement).
+      bool         adaptive_refinement        = false;
+      unsigned int max_refinement_level       = 0;
+      unsigned int refinement_interval        = 10;
+      double       refinement_damage_limit    = 0.;
+      double       refinement_driver_fraction = 0.5;
+      /// In cut-off radii of the non-local average.
+      double refinement_buffer = 1.;
 
     private:
       MPI_Comm                                  communicator;

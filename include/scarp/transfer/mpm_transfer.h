@@ -8,6 +8,7 @@
 #include <scarp/grid/background_grid.h>
 #include <scarp/materials/material.h>
 #include <scarp/particles/property_layout.h>
+#include <scarp/transfer/gimp_patches.h>
 #include <scarp/transfer/step_report.h>
 #include <scarp/transfer/transfer_parameters.h>
 
@@ -90,11 +91,14 @@ namespace scarp
         body_force = function;
       }
 
-      /// Nodal mass below which a node is treated as empty [kg].
+      /// Nodal mass below which a node is treated as empty, per unit
+      /// volume of the smallest cell at the node [kg/m^dim]: the cutoff of
+      /// a node follows the local cell size on a refined mesh.
       void
-      set_mass_cutoff(const double cutoff)
+      set_mass_cutoff_density(const double cutoff_density)
       {
-        mass_cutoff = cutoff;
+        mass_cutoff_density = cutoff_density;
+        compute_node_cutoffs();
       }
 
       /**
@@ -108,6 +112,13 @@ namespace scarp
            const Tensor<1, dim> &gravity,
            const Damping        &damping,
            DamagePoints<dim>    *damage_points);
+
+      /// The GIMP patches (for tests and statistics).
+      GimpPatches<dim> &
+      gimp_patches()
+      {
+        return patches;
+      }
 
       /// Measure the energies and momenta of the particles as they are.
       StepReport
@@ -134,41 +145,8 @@ namespace scarp
 
     private:
       void
-      particles_to_grid(const double          dt,
-                        const Tensor<1, dim> &gravity,
+      particles_to_grid(const Tensor<1, dim> &gravity,
                         const bool            momentum_only);
-      /// P2G with the shape functions @p Shape (Q1Shape or GimpShape).
-      template <class Shape>
-      void
-      particles_to_grid_impl(const Tensor<1, dim> &gravity,
-                             const bool            momentum_only);
-      /// G2P with the shape functions @p Shape (Q1Shape or GimpShape).
-      template <class Shape>
-      void
-      grid_to_particles_impl(const double dt,
-                             const bool   update_positions_and_velocities,
-                             const bool   update_stress,
-                             const std::array<Vector, dim> &stress_velocity,
-                             StepReport                    &report,
-                             DamagePoints<dim>             *damage_points,
-                             const Tensor<1, dim>          &gravity);
-      /// GIMP: the dofs of the 4^dim-node patch of every locally owned cell
-      /// (invalid_dof_index outside the mesh). Needs a uniform mesh.
-      void
-      build_gimp_patches();
-      /// What P2G and G2P need of one cell: its edge @p h, its lowest
-      /// vertex @p x0 and the dofs the shape @p Shape couples its points to
-      /// (the cell's own 2^dim, or the GIMP patch).
-      template <class Shape>
-      void
-      cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                 double                                               &h,
-                 Point<dim>                                           &x0,
-                 std::vector<types::global_dof_index> &dofs) const;
-      double
-      solve_grid(const double dt, const Damping &damping, StepReport &report);
-      void
-      remap_momentum(StepReport &report);
       void
       grid_to_particles(const double dt,
                         const bool   update_positions_and_velocities,
@@ -177,6 +155,32 @@ namespace scarp
                         StepReport                    &report,
                         DamagePoints<dim>             *damage_points,
                         const Tensor<1, dim>          &gravity);
+      /// The nodes the points of @p cell couple to: with Q1 the cell's own
+      /// 2^dim (constrained if hanging), with GIMP the unconstrained nodes
+      /// of its patch. Sets @p h and @p x0 (edge and lowest vertex).
+      void
+      cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                 double                                               &h,
+                 Point<dim>                                           &x0,
+                 std::vector<types::global_dof_index>                 &dofs,
+                 std::vector<Point<dim>>                 &positions,
+                 const typename GimpPatches<dim>::Patch *&patch);
+      /// Weights and gradients of the point at reference location @p xi
+      /// (Q1), or at @p x with reference volume @p V0 (GIMP).
+      void
+      shape_at(const typename GimpPatches<dim>::Patch *patch,
+               const Point<dim>                       &xi,
+               const Point<dim>                       &x,
+               const double                            h,
+               const double                            V0,
+               std::vector<double>                    &value,
+               std::vector<Tensor<1, dim>>            &gradient) const;
+      void
+      compute_node_cutoffs();
+      double
+      solve_grid(const double dt, const Damping &damping, StepReport &report);
+      void
+      remap_momentum(StepReport &report);
       void
       add_point_measures(const double         *p,
                          const Point<dim>     &x,
@@ -188,10 +192,12 @@ namespace scarp
       const particles::PropertyLayout<dim>    &layout;
       std::vector<const materials::Material *> materials;
       const TransferParameters                &parameters;
-      double                                   mass_cutoff = 0;
-      const Function<dim>                     *body_force  = nullptr;
-      Tensor<1, dim>                           last_gravity;
-      Tensor<1, dim>                           gravity_for_empty_nodes;
+      double                                   mass_cutoff_density = 0;
+      /// Mass cutoff of each locally owned node (by local index).
+      std::vector<double>  node_cutoff;
+      const Function<dim> *body_force = nullptr;
+      Tensor<1, dim>       last_gravity;
+      Tensor<1, dim>       gravity_for_empty_nodes;
 
       /// The locally owned cells that hold points, with their points; built
       /// once per step (points change cells only in the sort after it), so
@@ -208,8 +214,8 @@ namespace scarp
       void
       find_occupied_cells();
 
-      /// GIMP patches: 4^dim dofs per active cell index (empty with Q1).
-      std::vector<types::global_dof_index> patch_dofs;
+      /// GIMP patches of the occupied cells (built as cells fill).
+      GimpPatches<dim> patches;
 
       Vector                  mass;
       std::array<Vector, dim> momentum, force, velocity_old, velocity_new,

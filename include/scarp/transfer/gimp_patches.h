@@ -1,0 +1,118 @@
+#ifndef scarp_transfer_gimp_patches_h
+#define scarp_transfer_gimp_patches_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include <set>
+#include <vector>
+
+namespace scarp
+{
+  namespace transfer
+  {
+    using namespace dealii;
+
+    /**
+     * @brief GIMP on any mesh the triangulation produces (uniform, or
+     * adaptive with hanging nodes), in 2D and 3D, on any number of ranks.
+     *
+     * The weight of node j for a point with the axis-aligned domain
+     * Omega_p (half-widths l_d) is the mean of the global, hanging-node
+     * constrained Q1 basis function N_j over Omega_p:
+     *
+     *   S_j = 1/|Omega_p| int_{Omega_p} N_j,
+     *   grad S_j = 1/|Omega_p| int_{Omega_p} grad N_j.
+     *
+     * N_j is, on every active cell K', the sum of K''s Q1 shape functions
+     * phi_i times the constraint coefficient c_ij (1 for j = i, the
+     * AffineConstraints weight if vertex i hangs on j). The Q1 functions
+     * are multilinear, so the mean of phi_i and of grad phi_i over the box
+     * Omega_p n K' are their values at the centre of that box: in closed
+     * form,
+     *
+     *   S_j = sum_{K'} |Omega_p n K'|/|Omega_p| sum_i c_ij phi_i(m_K'),
+     *
+     * with m_K' the centre of Omega_p n K' (and the same for gradients).
+     * On a uniform mesh this is uniform GIMP (Bardenhagen & Kober 2004)
+     * exactly; for l -> 0 it is Q1.
+     *
+     * Rule for the domain across levels: l_d <= h_K / 2 with h_K the edge of
+     * the cell that holds the point, so that Omega_p only reaches the
+     * active cells that touch K; with at most one level of difference at
+     * vertices (the triangulation's smoothing) these are all found from
+     * K's vertices. The patch of a cell K lists those cells, with their
+     * vertices already resolved through the constraints into the
+     * unconstrained nodes ("patch nodes"): P2G adds straight into the
+     * patch nodes and G2P reads them, and no constraint is applied in the
+     * hot loops.
+     */
+    template <int dim>
+    class GimpPatches
+    {
+    public:
+      /// The cells a point of one cell can reach, with their vertices
+      /// resolved into patch nodes.
+      struct Patch
+      {
+        /// Lower corner and edge of each cell of the patch.
+        std::vector<Point<dim>> cell_lower;
+        std::vector<double>     cell_size;
+        /// For vertex v of patch cell c: entries [begin[c 2^dim + v],
+        /// begin[c 2^dim + v + 1]) of (node, weight).
+        std::vector<unsigned int> entry_begin;
+        std::vector<unsigned int> entry_node;
+        std::vector<double>       entry_weight;
+        /// The unconstrained dofs of the patch and their positions.
+        std::vector<types::global_dof_index> node_dofs;
+        std::vector<Point<dim>>              node_positions;
+
+        unsigned int
+        n_nodes() const
+        {
+          return node_dofs.size();
+        }
+      };
+
+      /// Forget all patches; call after every change of the mesh or dofs.
+      void
+      reinit(const DoFHandler<dim>           &dof_handler,
+             const AffineConstraints<double> &constraints);
+
+      /// The patch of a locally owned cell (built the first time asked).
+      const Patch &
+      patch(const typename DoFHandler<dim>::active_cell_iterator &cell);
+
+      /// Weights @p value and gradients @p gradient (size n_nodes()) of a
+      /// point at @p x with domain half-widths @p l (l_d <= h_K / 2, l_d = 0
+      /// only on the boundary of the mesh box).
+      static void
+      evaluate(const Patch      &patch,
+               const Point<dim> &x,
+               const double (&l)[dim],
+               std::vector<double>         &value,
+               std::vector<Tensor<1, dim>> &gradient);
+
+      /// Number of patches built since the last reinit (for statistics).
+      unsigned int
+      n_built() const
+      {
+        return patches.size();
+      }
+
+    private:
+      const DoFHandler<dim>           *dofs        = nullptr;
+      const AffineConstraints<double> *constraints = nullptr;
+      /// Active cells at each vertex (only non-artificial cells).
+      std::vector<std::vector<typename DoFHandler<dim>::active_cell_iterator>>
+                         vertex_cells;
+      std::vector<int>   patch_index; ///< per active cell index
+      std::vector<Patch> patches;
+    };
+  } // namespace transfer
+} // namespace scarp
+
+#endif

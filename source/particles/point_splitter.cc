@@ -1,0 +1,123 @@
+#include <deal.II/base/mpi.h>
+
+#include <scarp/particles/point_splitter.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace scarp
+{
+  namespace particles
+  {
+    template <int dim>
+    void
+    PointSplitter<dim>::record(const Particles::ParticleHandler<dim> &particles,
+                               const Triangulation<dim>              &tria)
+    {
+      recorded.clear();
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->refine_flag_set())
+          for (const auto &particle : particles.particles_in_cell(cell))
+            recorded.emplace_back(particle.get_id(), cell->level());
+      std::sort(recorded.begin(), recorded.end());
+    }
+
+
+    template <int dim>
+    types::particle_index
+    PointSplitter<dim>::split(Particles::ParticleHandler<dim> &particles,
+                              const PropertyLayout<dim>       &layout,
+                              const BoundingBox<dim>          &box,
+                              const MPI_Comm                   communicator)
+    {
+      constexpr unsigned int n_children = 1u << dim;
+      struct Child
+      {
+        Point<dim>                                        location;
+        typename Triangulation<dim>::active_cell_iterator cell;
+        std::vector<double>                               properties;
+      };
+      std::vector<Child>    children;
+      types::particle_index max_id = 0;
+      for (auto &particle : particles)
+        {
+          max_id = std::max(max_id, particle.get_id());
+          const auto it =
+            std::lower_bound(recorded.begin(),
+                             recorded.end(),
+                             std::make_pair(particle.get_id(), 0u));
+          if (it == recorded.end() || it->first != particle.get_id())
+            continue;
+          const auto cell = particle.get_surrounding_cell();
+          if (static_cast<unsigned int>(cell->level()) <= it->second)
+            continue;
+          double *const    p    = particle.get_properties().data();
+          const Point<dim> x    = particle.get_location();
+          const double     V0   = p[layout.reference_volume];
+          const double     side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
+          // Half-widths of the domain, clipped to the mesh box.
+          double l[dim];
+          for (unsigned int d = 0; d < dim; ++d)
+            l[d] = std::max(0.,
+                            std::min({0.5 * side,
+                                      x[d] - box.lower_bound(d),
+                                      box.upper_bound(d) - x[d]}));
+          const Tensor<2, dim> F_inv =
+            invert(layout.get_matrix(p, layout.deformation_gradient));
+          const Point<dim> X(layout.get_vector(p, layout.reference_position));
+          p[layout.mass] /= n_children;
+          p[layout.reference_volume] /= n_children;
+          std::vector<double> parent(p, p + layout.n_properties());
+          for (unsigned int c = 0; c < n_children; ++c)
+            {
+              Tensor<1, dim> offset;
+              for (unsigned int d = 0; d < dim; ++d)
+                offset[d] = ((c >> d) & 1u ? 0.5 : -0.5) * l[d];
+              const Tensor<1, dim> dX = F_inv * offset;
+              if (c == 0)
+                {
+                  particle.set_location(x + offset);
+                  layout.set_vector(p, layout.reference_position, X + dX);
+                  continue;
+                }
+              Child child{x + offset, cell, parent};
+              layout.set_vector(child.properties.data(),
+                                layout.reference_position,
+                                X + dX);
+              children.push_back(std::move(child));
+            }
+        }
+      recorded.clear();
+
+      // Ids: ranks take consecutive ranges above the largest id in use.
+      max_id = Utilities::MPI::max(max_id, communicator);
+      const unsigned long long n_local = children.size();
+      unsigned long long       first   = 0;
+      MPI_Exscan(
+        &n_local, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, communicator);
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        first = 0;
+      types::particle_index id = max_id + 1 + first;
+      for (const Child &child : children)
+        {
+          // The reference location is the cell's (sorting fixes a child
+          // that lies in a neighbour).
+          const Point<dim> x0 = child.cell->vertex(0);
+          const double     h  = child.cell->vertex(1)[0] - x0[0];
+          Point<dim>       xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = (child.location[d] - x0[d]) / h;
+          particles.insert_particle(child.location,
+                                    xi,
+                                    id++,
+                                    child.cell,
+                                    ArrayView<const double>(child.properties));
+        }
+      particles.update_cached_numbers();
+      return Utilities::MPI::sum(n_local, communicator) / (n_children - 1);
+    }
+
+    template class PointSplitter<2>;
+    template class PointSplitter<3>;
+  } // namespace particles
+} // namespace scarp

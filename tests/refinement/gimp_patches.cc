@@ -1,0 +1,384 @@
+// GIMP on adaptive meshes (transfer/gimp_patches.h) and point splitting
+// (particles/point_splitter.h), without a simulation around them:
+//
+// - uniform: on a uniform mesh the patch weights equal the closed-form
+//   uniform GIMP of gimp_shape.h (Bardenhagen & Kober) to round-off;
+// - adaptive: on a mesh refined twice in a band (hanging nodes, coarse-fine
+//   interfaces in both directions), in 2D and 3D, on any number of ranks,
+//   the weights form a partition of unity, their gradients sum to zero, and
+//   they reproduce linear fields and their gradients exactly (the
+//   hanging-node constrained Q1 space holds the linear functions, and the
+//   mean of a linear function over the point's domain is its value at the
+//   centre);
+// - split: refining cells splits their points into 2^dim children with mass,
+//   momentum, angular momentum and kinetic energy unchanged to 1e-12, ids
+//   unique over all ranks.
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <scarp/particles/point_splitter.h>
+#include <scarp/particles/property_layout.h>
+#include <scarp/transfer/gimp_patches.h>
+#include <scarp/transfer/gimp_shape.h>
+
+#include "../common/scene_runner.h"
+
+#include <random>
+#include <set>
+
+namespace
+{
+  using namespace scarp_test;
+  using scarp::transfer::GimpPatches;
+  using scarp::transfer::GimpShape;
+
+  /// A box of 8^dim coarse cells of edge 1, refined @p levels times in the
+  /// band 2.6 < x < 5.4 (smoothing adds the level balance around it).
+  template <int dim>
+  void
+  make_mesh(parallel::distributed::Triangulation<dim> &tria,
+            const unsigned int                         levels)
+  {
+    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
+    for (unsigned int k = 0; k < levels; ++k)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->center()[0] > 2.6 &&
+              cell->center()[0] < 5.4 &&
+              static_cast<unsigned int>(cell->level()) == k)
+            cell->set_refine_flag();
+        tria.execute_coarsening_and_refinement();
+      }
+  }
+
+  template <int dim>
+  struct Setup
+  {
+    parallel::distributed::Triangulation<dim> tria;
+    FE_Q<dim>                                 fe;
+    DoFHandler<dim>                           dofs;
+    AffineConstraints<double>                 constraints;
+    GimpPatches<dim>                          patches;
+
+    explicit Setup(const unsigned int levels)
+      : tria(MPI_COMM_WORLD,
+             Triangulation<dim>::limit_level_difference_at_vertices)
+      , fe(1)
+      , dofs(tria)
+    {
+      make_mesh(tria, levels);
+      dofs.distribute_dofs(fe);
+      IndexSet relevant;
+      DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+      constraints.reinit(relevant);
+      DoFTools::make_hanging_node_constraints(dofs, constraints);
+      constraints.close();
+      patches.reinit(dofs, constraints);
+    }
+  };
+
+  /// Random points in every locally owned cell, with domains from
+  /// l = 0 (Q1) up to the largest allowed, l = h_K / 2; the domain is
+  /// clipped to the box [0, 8]^dim as the transfer does.
+  template <int dim>
+  void
+  for_random_points(
+    Setup<dim> &s,
+    const std::function<
+      void(const typename GimpPatches<dim>::Patch &,
+           const Point<dim> &,
+           const double (&)[dim],
+           const typename DoFHandler<dim>::active_cell_iterator &)> &f)
+  {
+    std::mt19937                           rng(7);
+    std::uniform_real_distribution<double> u(0., 1.);
+    for (const auto &cell : s.dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const double h = cell->vertex(1)[0] - cell->vertex(0)[0];
+            Point<dim>   x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = cell->vertex(0)[d] + h * u(rng);
+            const double l0 = k == 0 ? 0.5 * h : (k == 1 ? 0.25 * h : 0.);
+            double       l[dim];
+            for (unsigned int d = 0; d < dim; ++d)
+              l[d] = std::max(0., std::min({l0, x[d], 8. - x[d]}));
+            f(s.patches.patch(cell), x, l, cell);
+          }
+  }
+
+  template <int dim>
+  void
+  uniform()
+  {
+    Setup<dim>                  s(0);
+    std::vector<double>         value;
+    std::vector<Tensor<1, dim>> gradient;
+    double                      worst = 0, worst_grad = 0;
+    unsigned int                n = 0;
+    for_random_points<dim>(
+      s,
+      [&](const auto       &patch,
+          const Point<dim> &x,
+          const double(&l)[dim],
+          const auto &cell) {
+        GimpPatches<dim>::evaluate(patch, x, l, value, gradient);
+        GimpShape<dim> reference;
+        Point<dim>     xi;
+        for (unsigned int d = 0; d < dim; ++d)
+          xi[d] = x[d] - cell->vertex(0)[d];
+        reference.evaluate(xi, 1., l);
+        // Match the reference's 4^dim patch nodes by position.
+        for (unsigned int i = 0; i < GimpShape<dim>::n; ++i)
+          {
+            Point<dim> node = cell->vertex(0);
+            for (unsigned int d = 0; d < dim; ++d)
+              node[d] += GimpShape<dim>::offset(i, d);
+            double         v = 0;
+            Tensor<1, dim> g;
+            for (unsigned int j = 0; j < patch.n_nodes(); ++j)
+              if (patch.node_positions[j].distance(node) < 1e-12)
+                {
+                  v = value[j];
+                  g = gradient[j];
+                }
+            worst = std::max(worst, std::abs(v - reference.value[i]));
+            worst_grad =
+              std::max(worst_grad, (g - reference.gradient[i]).norm());
+          }
+        ++n;
+      });
+    worst      = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    worst_grad = Utilities::MPI::max(worst_grad, MPI_COMM_WORLD);
+    out() << "  " << dim << "D uniform mesh, " << n
+          << " points on rank 0: max |S - S_uGIMP| = " << worst
+          << ", max |grad S - grad S_uGIMP| = " << worst_grad << std::endl;
+    // Both are sums of a few products of numbers of order 1: round-off
+    // is a few 1e-16; 1e-13 leaves room and is far below any real
+    // difference (a domain size wrong by 1 % changes weights by ~1e-3).
+    check(worst < 1e-13 && worst_grad < 1e-13,
+          std::to_string(dim) + "D: patch weights equal uniform GIMP to 1e-13");
+  }
+
+  template <int dim>
+  void
+  adaptive()
+  {
+    Setup<dim> s(2);
+    check(s.tria.n_global_levels() == 3 && s.constraints.n_constraints() > 0,
+          std::to_string(dim) + "D: two refinement levels with hanging nodes");
+    std::vector<double>         value;
+    std::vector<Tensor<1, dim>> gradient;
+    double       unity = 0, grad_sum = 0, linear = 0, linear_grad = 0;
+    unsigned int n = 0, n_hanging_patches = 0;
+    for_random_points<dim>(
+      s,
+      [&](const auto       &patch,
+          const Point<dim> &x,
+          const double(&l)[dim],
+          const auto &) {
+        GimpPatches<dim>::evaluate(patch, x, l, value, gradient);
+        double         sum = 0;
+        Tensor<1, dim> gsum;
+        Point<dim>     xs;
+        Tensor<2, dim> I;
+        for (unsigned int j = 0; j < patch.n_nodes(); ++j)
+          {
+            sum += value[j];
+            gsum += gradient[j];
+            xs += value[j] * patch.node_positions[j];
+            I += outer_product(patch.node_positions[j], gradient[j]);
+          }
+        unity    = std::max(unity, std::abs(sum - 1));
+        grad_sum = std::max(grad_sum, gsum.norm());
+        linear   = std::max(linear, xs.distance(x));
+        linear_grad =
+          std::max(linear_grad,
+                   (I - Tensor<2, dim>(unit_symmetric_tensor<dim>())).norm());
+        n_hanging_patches +=
+          patch.entry_node.size() > patch.cell_size.size() * (1u << dim);
+        ++n;
+      });
+    unity             = Utilities::MPI::max(unity, MPI_COMM_WORLD);
+    grad_sum          = Utilities::MPI::max(grad_sum, MPI_COMM_WORLD);
+    linear            = Utilities::MPI::max(linear, MPI_COMM_WORLD);
+    linear_grad       = Utilities::MPI::max(linear_grad, MPI_COMM_WORLD);
+    n_hanging_patches = Utilities::MPI::sum(n_hanging_patches, MPI_COMM_WORLD);
+    out() << "  " << dim << "D adaptive mesh ("
+          << s.tria.n_global_active_cells() << " cells), " << n
+          << " points on rank 0, " << n_hanging_patches
+          << " points whose patch has hanging nodes:\n    max |sum S - 1| = "
+          << unity << ", max |sum grad S| = " << grad_sum
+          << ", max |sum S x_j - x_p| = " << linear
+          << " m, max |sum x_j (x) grad S - I| = " << linear_grad << std::endl;
+    check(n_hanging_patches > 0, "points see hanging nodes");
+    // Sums of ~10-100 terms of order 1 (positions up to 8 m, gradients up
+    // to 1/h = 4 per m): round-off ~1e-14. A wrong constraint weight or a
+    // missed cell (0.5 or a whole cell's share) shows at 1e-2 or more.
+    check(unity < 1e-12, "partition of unity to 1e-12");
+    check(grad_sum < 1e-12, "gradients sum to zero to 1e-12");
+    check(linear < 1e-12, "linear fields reproduced to 1e-12 m");
+    check(linear_grad < 1e-12, "gradients of linear fields exact to 1e-12");
+  }
+
+  template <int dim>
+  void
+  split()
+  {
+    parallel::distributed::Triangulation<dim> tria(
+      MPI_COMM_WORLD, Triangulation<dim>::limit_level_difference_at_vertices);
+    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
+    MappingCartesian<dim>                 mapping;
+    scarp::particles::PropertyLayout<dim> layout;
+    layout.build(/*apic=*/true, {"a", "b"});
+    Particles::ParticleHandler<dim> particles(tria,
+                                              mapping,
+                                              layout.n_properties());
+    // 2^dim points per cell with a rotating, stretching velocity field,
+    // a sheared F and some state, each rank in its cells; ids from the
+    // position on the lattice.
+    {
+      std::vector<double> p(layout.n_properties());
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (unsigned int c = 0; c < (1u << dim); ++c)
+            {
+              Point<dim> xi;
+              for (unsigned int d = 0; d < dim; ++d)
+                xi[d] = (c >> d) & 1u ? 0.75 : 0.25;
+              const Point<dim> x = cell->vertex(0) + Tensor<1, dim>(xi);
+              std::fill(p.begin(), p.end(), 0.);
+              p[layout.mass]             = 2000 * 0.125 + x[0];
+              p[layout.reference_volume] = std::pow(0.5, dim);
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  p[layout.velocity + d] = (d == 0 ? -x[1] : x[0]) + 0.1 * d;
+                  p[layout.reference_position + d]             = x[d];
+                  p[layout.deformation_gradient + d * dim + d] = 1.;
+                }
+              p[layout.deformation_gradient + 1] = 0.2; // F_01
+              p[layout.affine + 1]               = 0.3;
+              p[layout.state]                    = x[0] * x[1];
+              types::particle_index id           = 0;
+              for (int d = dim - 1; d >= 0; --d)
+                id = 16 * id + static_cast<types::particle_index>(2 * x[d]);
+              particles.insert_particle(x, xi, id, cell, p);
+            }
+    }
+    particles.update_cached_numbers();
+    particles.sort_particles_into_subdomains_and_cells();
+    // The same mass and momentum before and after.
+    const auto totals = [&]() {
+      std::vector<double> t(3 + dim, 0.);
+      for (const auto &particle : particles)
+        {
+          const double *p = particle.get_properties().data();
+          const double  m = p[layout.mass];
+          const auto    x = particle.get_location();
+          t[0] += m;
+          double v2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              t[3 + d] += m * p[layout.velocity + d];
+              v2 += p[layout.velocity + d] * p[layout.velocity + d];
+            }
+          t[1] += 0.5 * m * v2;
+          t[2] +=
+            m * (x[0] * p[layout.velocity + 1] - x[1] * p[layout.velocity + 0]);
+        }
+      Utilities::MPI::sum(ArrayView<const double>(t),
+                          MPI_COMM_WORLD,
+                          ArrayView<double>(t));
+      return t;
+    };
+    const auto                  before   = totals();
+    const types::particle_index n_before = particles.n_global_particles();
+
+    // Refine the cells below x = 3: their 3 x 8 (x 8) cells' points split.
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->center()[0] < 3)
+        cell->set_refine_flag();
+    tria.prepare_coarsening_and_refinement();
+    scarp::particles::PointSplitter<dim> splitter;
+    splitter.record(particles, tria);
+    particles.prepare_for_coarsening_and_refinement();
+    tria.execute_coarsening_and_refinement();
+    particles.unpack_after_coarsening_and_refinement();
+    Point<dim> upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      upper[d] = 8.;
+    const BoundingBox<dim> box(std::make_pair(Point<dim>(), upper));
+    const auto n_split = splitter.split(particles, layout, box, MPI_COMM_WORLD);
+    particles.sort_particles_into_subdomains_and_cells();
+    const auto after = totals();
+
+    const unsigned int n_cells_split = 3 * std::pow(8, dim - 1);
+    const unsigned int expected      = n_cells_split * (1u << dim);
+    out() << "  " << dim << "D: " << n_before << " points, " << n_split
+          << " split, " << particles.n_global_particles() << " after; mass "
+          << before[0] << " -> " << after[0] << ", kinetic " << before[1]
+          << " -> " << after[1] << ", angular " << before[2] << " -> "
+          << after[2] << std::endl;
+    check(n_split == expected, "every point of a refined cell split");
+    check(particles.n_global_particles() ==
+            n_before + expected * ((1u << dim) - 1),
+          "2^dim children each");
+    double worst = 0;
+    for (unsigned int k = 0; k < before.size(); ++k)
+      worst = std::max(worst,
+                       std::abs(after[k] - before[k]) /
+                         std::max(std::abs(before[k]), 1.));
+    // Mass and velocities are copied or divided by 2^dim: exact up to
+    // the order of the sums.
+    check(worst < 1e-12,
+          "mass, kinetic energy, linear and angular momentum unchanged to "
+          "1e-12 (relative)");
+    std::vector<types::particle_index> ids;
+    for (const auto &particle : particles)
+      ids.push_back(particle.get_id());
+    const auto all = Utilities::MPI::all_gather(MPI_COMM_WORLD, ids);
+    std::set<types::particle_index> unique;
+    std::size_t                     n_ids = 0;
+    for (const auto &r : all)
+      {
+        unique.insert(r.begin(), r.end());
+        n_ids += r.size();
+      }
+    check(unique.size() == n_ids, "ids unique over all ranks");
+    // Every point of a refined cell now has a quarter (eighth) of the
+    // volume, and sits in a fine cell with 2^dim points of the lattice.
+    bool lattice = true;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->level() == 1)
+        lattice = lattice && particles.n_particles_in_cell(cell) == (1u << dim);
+    check(Utilities::MPI::min(lattice ? 1 : 0, MPI_COMM_WORLD) == 1,
+          "each refined cell holds 2^dim children (the lattice is kept)");
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  return run_cases(argc,
+                   argv,
+                   {{"uniform",
+                     [] {
+                       uniform<2>();
+                       uniform<3>();
+                     }},
+                    {"adaptive",
+                     [] {
+                       adaptive<2>();
+                       adaptive<3>();
+                     }},
+                    {"split", [] {
+                       split<2>();
+                       split<3>();
+                     }}});
+}
