@@ -3,6 +3,7 @@
 
 #include <scarp/scenes/cliff_profile.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -136,6 +137,39 @@ namespace scarp
           format(d.crack_width),
           Patterns::Double(),
           "Width [m] of the tension crack; 0 = one background cell.");
+        prm.declare_entry(
+          "Crack band width factor",
+          format(d.crack_band_width_factor),
+          Patterns::Double(),
+          "Pre-damage band instead of the fully damaged crack box, with "
+          "half-width w = this factor times the non-local length scale l_c "
+          "of the body's material: initial damage exp(-(r/w)^4) at distance "
+          "r from the crack centre line (from the top down to Crack depth), "
+          "0 beyond Crack band cut-off * w. 0 = no band. The authors' code "
+          "uses w = the radius of its bell weight, i.e. sqrt(7) = 2.6458 "
+          "with l_c the standard deviation.");
+        prm.declare_entry(
+          "Crack band cut-off",
+          format(d.crack_band_cutoff),
+          Patterns::Double(),
+          "Distance, in units of the band half-width w, beyond which the "
+          "pre-damage band leaves the material undamaged; >= 1. The "
+          "authors' code: 1 (damage jumps from exp(-1) to 0 at r = w); 2 "
+          "makes the band smooth (exp(-16) at the cut).");
+        prm.declare_entry(
+          "Base layer thickness",
+          format(d.base_layer_thickness),
+          Patterns::Double(),
+          "Thickness [m] of a slab of the body's material under the beach "
+          "level, from the back of the body to Base layer extent seaward of "
+          "the toe (the authors' code: 2-3 m on a fixed bottom); 0 = none. "
+          "The mesh must then reach below the beach: Mesh/Lower corner.");
+        prm.declare_entry(
+          "Base layer extent",
+          format(d.base_layer_extent),
+          Patterns::Double(),
+          "Distance [m] from the toe to the seaward end of the base layer; "
+          ">= 0. Used only with a positive Base layer thickness.");
       }
       prm.leave_subsection();
     }
@@ -147,18 +181,22 @@ namespace scarp
       Parameters p;
       prm.enter_subsection("Cliff");
       {
-        p.toe_position      = prm.get_double("Toe position");
-        p.beach_level       = prm.get_double("Beach level");
-        p.height            = prm.get_double("Height");
-        p.lower_face_angle  = prm.get_double("Lower face angle");
-        p.upper_face_height = prm.get_double("Upper face height");
-        p.upper_face_angle  = prm.get_double("Upper face angle");
-        p.back_length       = prm.get_double("Back length");
-        p.notch_depth       = prm.get_double("Notch depth");
-        p.notch_angle       = prm.get_double("Notch angle");
-        p.crack_offset      = prm.get_double("Crack offset");
-        p.crack_depth       = prm.get_double("Crack depth");
-        p.crack_width       = prm.get_double("Crack width");
+        p.toe_position            = prm.get_double("Toe position");
+        p.beach_level             = prm.get_double("Beach level");
+        p.height                  = prm.get_double("Height");
+        p.lower_face_angle        = prm.get_double("Lower face angle");
+        p.upper_face_height       = prm.get_double("Upper face height");
+        p.upper_face_angle        = prm.get_double("Upper face angle");
+        p.back_length             = prm.get_double("Back length");
+        p.notch_depth             = prm.get_double("Notch depth");
+        p.notch_angle             = prm.get_double("Notch angle");
+        p.crack_offset            = prm.get_double("Crack offset");
+        p.crack_depth             = prm.get_double("Crack depth");
+        p.crack_width             = prm.get_double("Crack width");
+        p.crack_band_width_factor = prm.get_double("Crack band width factor");
+        p.crack_band_cutoff       = prm.get_double("Crack band cut-off");
+        p.base_layer_thickness    = prm.get_double("Base layer thickness");
+        p.base_layer_extent       = prm.get_double("Base layer extent");
       }
       prm.leave_subsection();
       parameters = p;
@@ -175,6 +213,18 @@ namespace scarp
                                     h,
                                     ".")));
       cell_size = h;
+    }
+
+
+    void
+    CliffProfile::set_nonlocal_length(const double length_scale)
+    {
+      AssertThrow(length_scale >= 0. && std::isfinite(length_scale),
+                  ExcMessage(format("CliffProfile::set_nonlocal_length: the "
+                                    "length scale must be >= 0, got ",
+                                    length_scale,
+                                    ".")));
+      nonlocal_length = length_scale;
     }
 
 
@@ -202,7 +252,11 @@ namespace scarp
                                  p.notch_angle,
                                  p.crack_offset,
                                  p.crack_depth,
-                                 p.crack_width})
+                                 p.crack_width,
+                                 p.crack_band_width_factor,
+                                 p.crack_band_cutoff,
+                                 p.base_layer_thickness,
+                                 p.base_layer_extent})
         SCARP_CLIFF_REQUIRE(std::isfinite(value),
                             "all entries must be finite numbers.");
       SCARP_CLIFF_REQUIRE(p.height > 0.,
@@ -247,6 +301,27 @@ namespace scarp
       SCARP_CLIFF_REQUIRE(p.crack_width >= 0.,
                           format("Crack width must not be negative, got ",
                                  p.crack_width,
+                                 "."));
+
+      SCARP_CLIFF_REQUIRE(p.crack_band_width_factor >= 0.,
+                          format("Crack band width factor must not be "
+                                 "negative, got ",
+                                 p.crack_band_width_factor,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.crack_band_cutoff >= 1.,
+                          format("Crack band cut-off must be at least 1 "
+                                 "(the band reaches its half-width), got ",
+                                 p.crack_band_cutoff,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.base_layer_thickness >= 0.,
+                          format("Base layer thickness must not be negative, "
+                                 "got ",
+                                 p.base_layer_thickness,
+                                 "."));
+      SCARP_CLIFF_REQUIRE(p.base_layer_extent >= 0.,
+                          format("Base layer extent must not be negative, "
+                                 "got ",
+                                 p.base_layer_extent,
                                  "."));
 
       const double y_b          = p.beach_level;
@@ -308,13 +383,22 @@ namespace scarp
         }
 
       std::vector<Point<2>> v;
-      v.emplace_back(back_x, y_b);
+      if (p.base_layer_thickness > 0.)
+        {
+          // The slab under the beach: its top from its seaward end to the
+          // toe is the beach level, on which the notch (if any) sits.
+          v.emplace_back(back_x, y_b - p.base_layer_thickness);
+          v.emplace_back(base_layer_end(), y_b - p.base_layer_thickness);
+          v.emplace_back(base_layer_end(), y_b);
+        }
+      else
+        v.emplace_back(back_x, y_b);
       if (p.notch_depth > 0.)
         {
           v.push_back(notch_root_point);
           v.push_back(notch_top_point);
         }
-      else
+      else if (!(v.back() == toe_point))
         v.push_back(toe_point);
       // The knee is a vertex only when it is a real corner above the notch.
       if (lower_height > 0. && p.upper_face_height > 0. &&
@@ -364,6 +448,47 @@ namespace scarp
     CliffProfile::has_crack() const
     {
       return parameters.crack_depth > 0.;
+    }
+
+
+    bool
+    CliffProfile::has_crack_band() const
+    {
+      return has_crack() && parameters.crack_band_width_factor > 0.;
+    }
+
+
+    double
+    CliffProfile::crack_band_half_width() const
+    {
+      AssertThrow(has_crack_band(),
+                  ExcMessage("Cliff/Crack band width factor (or Crack "
+                             "depth) is zero: there is no pre-damage band."));
+      AssertThrow(nonlocal_length > 0.,
+                  ExcMessage("Cliff/Crack band width factor needs the "
+                             "non-local length scale l_c of the body's "
+                             "material, and it is zero: use a damage "
+                             "material with a bell or gaussian Nonlocal "
+                             "weight."));
+      return parameters.crack_band_width_factor * nonlocal_length;
+    }
+
+
+    double
+    CliffProfile::crack_band_damage(const Point<2> &x) const
+    {
+      const double w     = crack_band_half_width();
+      const double x_k   = crest_point[0] - parameters.crack_offset;
+      const double y_top = top_level();
+      // Distance to the segment x = x_k, y in [y_top - depth, y_top]; above
+      // the top (outside the body anyway) it is measured to the top end.
+      const double y_c =
+        std::clamp(x[1], y_top - parameters.crack_depth, y_top);
+      const double r = std::hypot(x[0] - x_k, x[1] - y_c);
+      if (r > parameters.crack_band_cutoff * w)
+        return 0.;
+      const double s = r / w;
+      return std::exp(-(s * s) * (s * s));
     }
 
 
@@ -426,6 +551,27 @@ namespace scarp
     }
 
 
+    double
+    CliffProfile::bottom_level() const
+    {
+      return parameters.beach_level - parameters.base_layer_thickness;
+    }
+
+
+    bool
+    CliffProfile::has_base_layer() const
+    {
+      return parameters.base_layer_thickness > 0.;
+    }
+
+
+    double
+    CliffProfile::base_layer_end() const
+    {
+      return parameters.toe_position + parameters.base_layer_extent;
+    }
+
+
     Point<2>
     CliffProfile::notch_top() const
     {
@@ -452,7 +598,9 @@ namespace scarp
         0.5 * lower_height * lower_height * cot_degrees(p.lower_face_angle) +
         0.5 * p.upper_face_height * p.upper_face_height *
           cot_degrees(p.upper_face_angle);
-      return p.height * p.back_length + face_area - notch_area;
+      const double base_area =
+        p.base_layer_thickness * (base_layer_end() - back_x);
+      return p.height * p.back_length + face_area - notch_area + base_area;
     }
 
 

@@ -216,6 +216,109 @@ main()
     CHECK_CLOSE(crack.upper_corner()[0] - crack.lower_corner()[0], 0.1, 1e-12);
   }
 
+  // Base layer: a slab of thickness t under the beach from the back of the
+  // body to `extent` seaward of the toe. Its area is t (x_t + extent -
+  // x_back) on top of the default body; the Joss Bay body with the authors'
+  // 7 m vertical upper face and a 2 m slab, with and without the notch.
+  for (const bool notch : {true, false})
+    {
+      const CliffProfile cliff = parse({{"Upper face height", "7"},
+                                        {"Base layer thickness", "2"},
+                                        {"Base layer extent", "25"},
+                                        {"Notch depth", notch ? "0.5" : "0"}});
+      const double       H = 15.5, H_l = 8.5, t = 2., x_t = 31., back = 27.7;
+      const double       x_k = x_t - H_l * cot(78.), x_back = x_k - back;
+      CHECK(cliff.has_base_layer());
+      CHECK_CLOSE(cliff.bottom_level(), -t, 1e-12);
+      CHECK_CLOSE(cliff.base_layer_end(), x_t + 25., 1e-12);
+      CHECK_CLOSE(cliff.crest()[0], x_k, 1e-12);
+      const double h_n  = notch ? 0.5 / (1. + cot(78.)) : 0.;
+      const double slab = t * (x_t + 25. - x_back);
+      // Face region beside the lower face: rectangle + triangle (the upper
+      // face is vertical and adds nothing).
+      const double area =
+        H * back + 0.5 * H_l * H_l * cot(78.) - 0.5 * 0.5 * h_n + slab;
+      CHECK_CLOSE(cliff.area(), area, 1e-10);
+      CHECK_CLOSE(cliff.body().area(), area, 1e-10);
+      const double h = 0.02;
+      CHECK_CLOSE(lattice_area(cliff.body(), h),
+                  area,
+                  perimeter(cliff.body()) * h / 2.);
+      // (x_back, -t), (x_e, -t), (x_e, 0), N, U or T, K, C, (x_back, H).
+      CHECK(cliff.body().vertices().size() == (notch ? 8u : 7u));
+      CHECK(cliff.body().contains(Point<2>(x_t + 20., -1.))); // under beach
+      CHECK(cliff.body().contains(Point<2>(x_back + 0.1, -1.9)));
+      CHECK(!cliff.body().contains(Point<2>(x_t + 20., 0.1))); // on beach
+      CHECK(!cliff.body().contains(Point<2>(x_t + 25.1, -1.)));
+      CHECK(!cliff.body().contains(Point<2>(x_t, -2.1)));
+      CHECK(cliff.body().contains(Point<2>(x_t - 0.45, -0.01))); // under N
+      CHECK(notch != cliff.body().contains(Point<2>(x_t - 0.45, 0.01)));
+      CHECK_CLOSE(cliff.surface_height(x_t + 1.), 0., 1e-12);
+    }
+  // A slab that ends at the toe (extent 0).
+  {
+    const CliffProfile cliff =
+      parse({{"Base layer thickness", "3"}, {"Base layer extent", "0"}});
+    const CliffProfile none = parse({});
+    CHECK_CLOSE(cliff.area(),
+                none.area() + 3. * (31. - none.back_position()),
+                1e-10);
+    CHECK_CLOSE(cliff.body().area(), cliff.area(), 1e-10);
+  }
+
+  // Pre-damage band: d = exp(-(r/w)^4) for r <= c w, r the distance to the
+  // crack centre segment x = x_c - 2.2, y in [H - 5, H], w = factor l_c.
+  {
+    CliffProfile cliff =
+      parse({{"Crack band width factor", "2.6457513110645906"}});
+    CHECK(cliff.has_crack_band());
+    CHECK_THROWS_WITH(cliff.crack_band_half_width(), "l_c");
+    cliff.set_nonlocal_length(0.18);
+    const double w = std::sqrt(7.) * 0.18, H = 15.5;
+    const double x_k = 31. - H * cot(78.) - 2.2;
+    CHECK_CLOSE(cliff.crack_band_half_width(), w, 1e-15);
+    // The values are exp of a few flops of r/w: round-off ~1e-15.
+    const auto profile = [&](const double r) {
+      return r > w ? 0. : std::exp(-std::pow(r / w, 4));
+    };
+    CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k, H - 1.)), 1., 1e-15);
+    for (const double r : {0.05, 0.2, 0.3, 0.4, 0.47, 0.48, 1.})
+      {
+        // Beside the centre line, and below its lower end (round end).
+        CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k + r, H - 2.)),
+                    profile(r),
+                    1e-14);
+        CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k - r, H - 0.01)),
+                    profile(r),
+                    1e-14);
+        CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k, H - 5. - r)),
+                    profile(r),
+                    1e-13);
+        const double s = r / std::sqrt(2.);
+        CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k + s, H - 5. - s)),
+                    profile(r),
+                    1e-13);
+      }
+    // Just inside the cut-off the authors' profile is exp(-1), beyond it 0.
+    CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k + 0.999999 * w, H - 2.)),
+                std::exp(-1.),
+                1e-5);
+    CHECK_CLOSE(cliff.crack_band_damage(Point<2>(x_k + 1.000001 * w, H - 2.)),
+                0.,
+                0.);
+    // A cut-off of 2 keeps the tail up to 2 w (exp(-16) at the end).
+    CliffProfile smooth =
+      parse({{"Crack band width factor", "1"}, {"Crack band cut-off", "2"}});
+    smooth.set_nonlocal_length(0.18);
+    CHECK_CLOSE(smooth.crack_band_damage(Point<2>(x_k + 0.27, H - 2.)),
+                std::exp(-std::pow(1.5, 4)),
+                1e-15);
+    CHECK_CLOSE(smooth.crack_band_damage(Point<2>(x_k + 0.37, H - 2.)), 0., 0.);
+    // Without crack depth there is no band.
+    CHECK(!parse({{"Crack band width factor", "1"}, {"Crack depth", "0"}})
+             .has_crack_band());
+  }
+
   // Impossible combinations: each error names the entry.
   const auto error = [](const std::map<std::string, std::string> &entries) {
     return scenes_test::message_of([&]() { parse(entries); });
@@ -244,7 +347,13 @@ main()
        "Crack offset (27.7) puts the crack"},
       {{{"Crack depth", "15.5"}}, "crack would be deeper than the cliff"},
       {{{"Crack depth", "-1"}}, "Crack depth must not be negative"},
-      {{{"Crack width", "-0.1"}}, "Crack width must not be negative"}};
+      {{{"Crack width", "-0.1"}}, "Crack width must not be negative"},
+      {{{"Crack band width factor", "-1"}},
+       "Crack band width factor must not be negative"},
+      {{{"Crack band cut-off", "0.5"}}, "Crack band cut-off must be at least"},
+      {{{"Base layer thickness", "-2"}},
+       "Base layer thickness must not be negative"},
+      {{{"Base layer extent", "-1"}}, "Base layer extent must not be"}};
   for (const auto &[entries, text] : cases)
     {
       const std::string message = error(entries);

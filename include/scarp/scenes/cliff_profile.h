@@ -41,7 +41,15 @@ namespace scarp
      *    while U lies on the lower face;
      *  - tension crack: the box [x_k - w/2, x_k + w/2) x [y_b + Height -
      *    Crack depth, y_b + Height) with x_k = x_C - Crack offset and w the
-     *    Crack width (one background cell when zero).
+     *    Crack width (one background cell when zero);
+     *  - optional pre-damage band instead of the crack box: damage
+     *    d(r) = exp(-(r/w)^4) for r <= c w, else 0, with r the distance to
+     *    the crack centre segment from (x_k, y_top - Crack depth) to
+     *    (x_k, y_top), w = Crack band width factor * l_c and c = Crack band
+     *    cut-off (the profile of the authors' code, doc/joss_bay.md);
+     *  - optional base layer: a slab of the same material, Base layer
+     *    thickness deep under the beach level, from the back of the body
+     *    to Base layer extent seaward of the toe.
      *
      * The defaults are the Joss Bay case of the reference paper (section 4):
      * Height 15.5 m, lower face 78 degrees, no vertical upper part, notch
@@ -71,6 +79,15 @@ namespace scarp
         double crack_depth = 5.0;
         /// 0: one background cell, see set_cell_size().
         double crack_width = 0.0;
+        /// Half-width of the pre-damage band in units of the non-local
+        /// length l_c; 0: no band (the crack is the fully damaged box).
+        double crack_band_width_factor = 0.0;
+        /// The band ends at this multiple of its half-width (authors: 1).
+        double crack_band_cutoff = 1.0;
+        /// Thickness of the slab under the beach level; 0: none.
+        double base_layer_thickness = 0.0;
+        /// How far the slab reaches seaward of the toe.
+        double base_layer_extent = 25.0;
       };
 
       /// The default (Joss Bay) cliff.
@@ -93,18 +110,41 @@ namespace scarp
       void
       set_cell_size(const double cell_size);
 
+      /// Non-local length scale l_c of the body's material, used by the
+      /// pre-damage band (Crack band width factor > 0).
+      void
+      set_nonlocal_length(const double length_scale);
+
       const Parameters &
       get_parameters() const;
 
       /// The cliff body, notch removed. Vertices counter-clockwise from the
       /// bottom of the back: (x_back, y_b), N, U [, K], C, (x_back, y_top);
-      /// without a notch: (x_back, y_b), T [, K], C, (x_back, y_top).
+      /// without a notch: (x_back, y_b), T [, K], C, (x_back, y_top). With
+      /// a base layer of thickness t and end x_e = x_t + Base layer extent
+      /// the first vertex is replaced by (x_back, y_b - t), (x_e, y_b - t),
+      /// (x_e, y_b) [, T without a notch].
       const PolygonShape &
       body() const;
 
       /// Whether Crack depth is positive.
       bool
       has_crack() const;
+
+      /// Whether the crack is a pre-damage band (Crack depth and Crack band
+      /// width factor positive) rather than a fully damaged box.
+      bool
+      has_crack_band() const;
+
+      /// Half-width w = Crack band width factor * l_c of the band [m].
+      /// Throws if no positive l_c was set (set_nonlocal_length()).
+      double
+      crack_band_half_width() const;
+
+      /// Initial damage of the band at @p x: exp(-(r/w)^4) for r <= cut-off
+      /// w, else 0; r is the distance of @p x to the crack centre segment.
+      double
+      crack_band_damage(const Point<2> &x) const;
 
       /// The tension crack region, to be marked fully damaged. Throws if
       /// there is no crack, or if Crack width is zero and no cell size was
@@ -128,6 +168,18 @@ namespace scarp
       double
       top_level() const;
 
+      /// y of the bottom of the body: Beach level - Base layer thickness.
+      double
+      bottom_level() const;
+
+      /// Whether Base layer thickness is positive.
+      bool
+      has_base_layer() const;
+
+      /// x of the seaward end of the base layer (toe + Base layer extent).
+      double
+      base_layer_end() const;
+
       /// Top point U of the notch (equal to the toe without a notch).
       Point<2>
       notch_top() const;
@@ -137,7 +189,8 @@ namespace scarp
       notch_root() const;
 
       /// Analytic area of the body: Height * (Back length) + the area
-      /// between the face and the crest vertical - the notch.
+      /// between the face and the crest vertical - the notch + the base
+      /// layer thickness * (its end - x_back).
       double
       area() const;
 
@@ -162,7 +215,8 @@ namespace scarp
       build();
 
       Parameters parameters;
-      double     cell_size = 0.;
+      double     cell_size       = 0.;
+      double     nonlocal_length = 0.;
 
       Point<2> toe_point;
       Point<2> knee_point;
