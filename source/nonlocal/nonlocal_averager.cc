@@ -133,6 +133,53 @@ namespace scarp
       const std::vector<types::particle_index> &ids,
       std::vector<double>                      &averages)
     {
+      compute_all(local_boxes,
+                  positions,
+                  volumes,
+                  values,
+                  is_receiver,
+                  nullptr,
+                  ids,
+                  averages);
+    }
+
+
+    template <int dim>
+    void
+    NonlocalAverager<dim>::compute(
+      const std::vector<BoundingBox<dim>>      &local_boxes,
+      const std::vector<Point<dim>>            &positions,
+      const std::vector<double>                &volumes,
+      const std::vector<double>                &values,
+      const std::vector<bool>                  &is_receiver,
+      const std::vector<bool>                  &is_source,
+      const std::vector<types::particle_index> &ids,
+      std::vector<double>                      &averages)
+    {
+      AssertDimension(is_source.size(), positions.size());
+      compute_all(local_boxes,
+                  positions,
+                  volumes,
+                  values,
+                  is_receiver,
+                  &is_source,
+                  ids,
+                  averages);
+    }
+
+
+    template <int dim>
+    void
+    NonlocalAverager<dim>::compute_all(
+      const std::vector<BoundingBox<dim>>      &local_boxes,
+      const std::vector<Point<dim>>            &positions,
+      const std::vector<double>                &volumes,
+      const std::vector<double>                &values,
+      const std::vector<bool>                  &is_receiver,
+      const std::vector<bool>                  *is_source,
+      const std::vector<types::particle_index> &ids,
+      std::vector<double>                      &averages)
+    {
       const std::size_t n = positions.size();
       AssertDimension(volumes.size(), n);
       AssertDimension(values.size(), n);
@@ -177,6 +224,7 @@ namespace scarp
               ordered_volumes.resize(n);
               ordered_values.resize(n);
               ordered_receivers.resize(n);
+              ordered_sources.resize(is_source ? n : 0);
               for (std::size_t i = 0; i < n; ++i)
                 {
                   const unsigned int b = permutation[i];
@@ -184,6 +232,8 @@ namespace scarp
                   ordered_volumes[b]   = volumes[i];
                   ordered_values[b]    = values[i];
                   ordered_receivers[b] = is_receiver[i];
+                  if (is_source)
+                    ordered_sources[b] = (*is_source)[i];
                 }
               ++reorder_count;
               compute_in_order(local_boxes,
@@ -191,6 +241,7 @@ namespace scarp
                                ordered_volumes,
                                ordered_values,
                                ordered_receivers,
+                               is_source ? &ordered_sources : nullptr,
                                built_ids,
                                ordered_averages);
               averages.resize(n);
@@ -199,8 +250,14 @@ namespace scarp
               return;
             }
         }
-      compute_in_order(
-        local_boxes, positions, volumes, values, is_receiver, ids, averages);
+      compute_in_order(local_boxes,
+                       positions,
+                       volumes,
+                       values,
+                       is_receiver,
+                       is_source,
+                       ids,
+                       averages);
     }
 
 
@@ -212,6 +269,7 @@ namespace scarp
       const std::vector<double>                &volumes,
       const std::vector<double>                &values,
       const std::vector<bool>                  &is_receiver,
+      const std::vector<bool>                  *is_source,
       const std::vector<types::particle_index> &ids,
       std::vector<double>                      &averages)
     {
@@ -220,7 +278,7 @@ namespace scarp
         needs_rebuild(local_boxes, positions, is_receiver, ids);
       if (rebuild)
         setup_communication(local_boxes, positions, ids);
-      exchange_source_data(positions, volumes, values);
+      exchange_source_data(positions, volumes, values, is_source);
       if (rebuild)
         {
           build_neighbour_lists(is_receiver);
@@ -453,8 +511,14 @@ namespace scarp
     NonlocalAverager<dim>::exchange_source_data(
       const std::vector<Point<dim>> &positions,
       const std::vector<double>     &volumes,
-      const std::vector<double>     &values)
+      const std::vector<double>     &values,
+      const std::vector<bool>       *is_source)
     {
+      // A point left out of the sums counts with volume 0, here and on the
+      // ranks it is a ghost of, which keeps the result rank-independent.
+      const auto volume = [&](const std::size_t i) {
+        return (is_source == nullptr || (*is_source)[i]) ? volumes[i] : 0.;
+      };
       const std::size_t n_local  = positions.size();
       const std::size_t n_ghost  = ghost_ids.size();
       const unsigned    n_values = doubles_per_ghost<dim>;
@@ -466,8 +530,8 @@ namespace scarp
         {
           const unsigned int s      = slot_of_local[i];
           source_positions[s]       = positions[i];
-          source_volumes[s]         = volumes[i];
-          source_weighted_values[s] = volumes[i] * values[i];
+          source_volumes[s]         = volume(i);
+          source_weighted_values[s] = volume(i) * values[i];
         }
 
       if (destinations.empty() && sources.empty())
@@ -499,7 +563,7 @@ namespace scarp
             {
               for (unsigned int d = 0; d < dim; ++d)
                 *b++ = positions[i][d];
-              *b++ = volumes[i];
+              *b++ = volume(i);
               *b++ = values[i];
             }
           requests.emplace_back();
@@ -692,8 +756,9 @@ namespace scarp
               interacting += (wq > 0.);
             }
           listed += row_start[i + 1] - row_start[i];
-          // The point itself has weight 1; only zero volumes can leave the
-          // denominator at zero, and then there is nothing to average.
+          // The point itself has weight 1; only zero volumes (or points
+          // left out of the sums) can leave the denominator at zero, and
+          // then there is nothing to average.
           averages[i] = denominator > 0. ? numerator / denominator : values[i];
         }
       listed_pair_count      = listed;

@@ -17,6 +17,16 @@
 //   w01 = e^-0.5, w02 = e^-1.28, w12 = e^-1.78, p3 again alone.
 //
 // The same points in 3D, in the x-z plane, give the same numbers.
+//
+// Fully damaged points left out of both sums (the authors' variant): p2
+// becomes a fully damaged point, Y2 = 0 (as the chalk model writes it) and
+// no source; p3 is no source either (a receiver without any source
+// neighbour keeps its own value):
+//   bell      Ybar0 = (1 + 0.5625*2*4) / (1 + 0.5625*2) = 5.5 / 2.125
+//             Ybar1 = (0.5625*1 + 2*4) / (0.5625 + 2)   = 8.5625 / 2.5625
+//   kept in the denominator with Y2 = 0 instead (today's default):
+//             Ybar0 = 5.5 / 2.1898, Ybar1 = 8.5625 / 2.56855
+//   gaussian  Ybar0 = (1 + w01*2*4) / (1 + w01*2), Ybar1 = (w01 + 8)/(w01 + 2)
 
 #include <deal.II/base/mpi.h>
 
@@ -71,6 +81,29 @@ run()
   check(ybar[3] == 7., gname + "isolated point keeps Y");
   std::cout << gname << ybar[0] << ' ' << ybar[1] << ' ' << ybar[2] << ' '
             << ybar[3] << std::endl;
+
+  // Fully damaged p2 (Y = 0), kept or left out of the sums.
+  PointSet<dim> damaged = points;
+  damaged.values[2]     = 0.;
+  averager.reinit(WeightType::bell, 1. / std::sqrt(7.), 0.1);
+  ybar                    = damaged.average(averager, boxes);
+  const std::string xname = std::to_string(dim) + "D bell, d = 1 kept ";
+  check(close(ybar[0], 5.5 / 2.1898, tol), xname + "Ybar0");
+  check(close(ybar[1], 8.5625 / 2.56855, tol), xname + "Ybar1");
+  damaged.sources         = {true, true, false, false};
+  ybar                    = damaged.average(averager, boxes);
+  const std::string ename = std::to_string(dim) + "D bell, d = 1 left out ";
+  check(close(ybar[0], 5.5 / 2.125, tol), ename + "Ybar0");
+  check(close(ybar[1], 8.5625 / 2.5625, tol), ename + "Ybar1");
+  check(ybar[2] == 0., ename + "non-receiver keeps Y");
+  check(ybar[3] == 7., ename + "receiver without sources keeps Y");
+  std::cout << ename << ybar[0] << ' ' << ybar[1] << std::endl;
+  averager.reinit(WeightType::gaussian, 0.5, 0.1);
+  ybar = damaged.average(averager, boxes);
+  check(close(ybar[0], (1. + w01 * 8.) / (1. + w01 * 2.), tol),
+        gname + "d = 1 left out Ybar0");
+  check(close(ybar[1], (w01 + 8.) / (w01 + 2.), tol),
+        gname + "d = 1 left out Ybar1");
 }
 
 int

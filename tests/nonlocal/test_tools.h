@@ -53,6 +53,8 @@ namespace scarp_test
     std::vector<double>                values;
     std::vector<bool>                  receivers;
     std::vector<types::particle_index> ids;
+    /// Empty: every point is a source; else one flag per point.
+    std::vector<bool> sources;
 
     std::size_t
     size() const
@@ -80,8 +82,12 @@ namespace scarp_test
             const std::vector<BoundingBox<dim>> &boxes) const
     {
       std::vector<double> result;
-      averager.compute(
-        boxes, positions, volumes, values, receivers, ids, result);
+      if (sources.empty())
+        averager.compute(
+          boxes, positions, volumes, values, receivers, ids, result);
+      else
+        averager.compute(
+          boxes, positions, volumes, values, receivers, sources, ids, result);
       return result;
     }
   };

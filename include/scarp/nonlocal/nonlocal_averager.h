@@ -100,6 +100,24 @@ namespace scarp
               const std::vector<types::particle_index> &ids,
               std::vector<double>                      &averages);
 
+      /**
+       * As above, but points with @p is_source false are left out of both
+       * sums (numerator and denominator), on every rank: they act as if
+       * their volume were zero. Such a point may still be a receiver; if
+       * it has no source neighbour at all, its average is its own value.
+       * Used for fully damaged points (the authors' variant of the
+       * average, doc/nonlocal.md).
+       */
+      void
+      compute(const std::vector<BoundingBox<dim>>      &local_boxes,
+              const std::vector<Point<dim>>            &positions,
+              const std::vector<double>                &volumes,
+              const std::vector<double>                &values,
+              const std::vector<bool>                  &is_receiver,
+              const std::vector<bool>                  &is_source,
+              const std::vector<types::particle_index> &ids,
+              std::vector<double>                      &averages);
+
       /// Force a rebuild of the neighbour lists at the next compute(). Must
       /// be called on all ranks alike.
       void
@@ -180,6 +198,17 @@ namespace scarp
       }
 
     private:
+      /// Both compute()s; @p is_source nullptr: every point is a source.
+      void
+      compute_all(const std::vector<BoundingBox<dim>>      &local_boxes,
+                  const std::vector<Point<dim>>            &positions,
+                  const std::vector<double>                &volumes,
+                  const std::vector<double>                &values,
+                  const std::vector<bool>                  &is_receiver,
+                  const std::vector<bool>                  *is_source,
+                  const std::vector<types::particle_index> &ids,
+                  std::vector<double>                      &averages);
+
       /// Decide (collectively) whether the lists must be rebuilt.
       /// compute() for points in the order of the last build (or any order
       /// when the lists are rebuilt).
@@ -189,6 +218,7 @@ namespace scarp
                        const std::vector<double>                &volumes,
                        const std::vector<double>                &values,
                        const std::vector<bool>                  &is_receiver,
+                       const std::vector<bool>                  *is_source,
                        const std::vector<types::particle_index> &ids,
                        std::vector<double>                      &averages);
       bool
@@ -205,11 +235,13 @@ namespace scarp
                           const std::vector<types::particle_index> &ids);
 
       /// Send positions, volumes and values of the ghosts, and fill the
-      /// source arrays (local and ghost) in id order.
+      /// source arrays (local and ghost) in id order. Points that are no
+      /// source (@p is_source, nullptr: all are) get volume 0.
       void
       exchange_source_data(const std::vector<Point<dim>> &positions,
                            const std::vector<double>     &volumes,
-                           const std::vector<double>     &values);
+                           const std::vector<double>     &values,
+                           const std::vector<bool>       *is_source);
 
       /// Build the neighbour lists of the receivers with a cell list.
       void
@@ -242,7 +274,7 @@ namespace scarp
       std::vector<unsigned int> permutation;
       std::vector<Point<dim>>   ordered_positions;
       std::vector<double> ordered_volumes, ordered_values, ordered_averages;
-      std::vector<bool>   ordered_receivers;
+      std::vector<bool>   ordered_receivers, ordered_sources;
 
       // Communication pattern: the local indices sent to each destination,
       // and the number of ghosts from each source rank (ascending ranks).
