@@ -87,6 +87,22 @@ namespace scarp
                         "Residual ratio r_g of the shear stiffness at d = 1 "
                         "[-], in [0, 1]. Joss Bay chalk: 5e-3 or 1e-2 (the "
                         "two runs of the paper).");
+      prm.declare_entry("Driving stress",
+                        "plastically corrected",
+                        Patterns::Selection(
+                          "plastically corrected|elastic trial"),
+                        "Effective (undamaged) stress the local driver Y is "
+                        "computed from: plastically corrected (after the "
+                        "Mohr-Coulomb return) or elastic trial (the "
+                        "predictor before the return, as the design note "
+                        "pins it). They differ only where the point yields.");
+      prm.declare_entry("Nonlocal exclude fully damaged",
+                        "false",
+                        Patterns::Bool(),
+                        "Leave fully damaged points (d = 1) out of both sums "
+                        "of the non-local average, as the authors' code "
+                        "does. false: they stay in the denominator with "
+                        "Y = 0, which dilutes the average next to a crack.");
     }
 
 
@@ -105,6 +121,10 @@ namespace scarp
       residual_tensile_ratio     = prm.get_double("Residual tensile ratio");
       residual_compressive_ratio = prm.get_double("Residual compressive ratio");
       residual_shear_ratio       = prm.get_double("Residual shear ratio");
+      driving_stress        = (prm.get("Driving stress") == "elastic trial")
+                                ? DrivingStress::trial
+                                : DrivingStress::corrected;
+      exclude_fully_damaged = prm.get_bool("Nonlocal exclude fully damaged");
       check();
     }
 
@@ -172,7 +192,8 @@ namespace scarp
               "damage",
               "kappa",
               "damage_dissipation",
-              "damage_driver"};
+              "damage_driver",
+              "nonlocal_driver"};
     }
 
 
@@ -206,6 +227,50 @@ namespace scarp
     Chalk::set_fully_damaged(double *state) const
     {
       state[damage_variable] = 1.;
+    }
+
+
+    void
+    Chalk::set_initial_damage(double *state, const double d) const
+    {
+      AssertThrow(d >= 0. && d <= 1.,
+                  ExcMessage("Chalk: an initial damage must lie in [0, 1], "
+                             "got " +
+                             std::to_string(d) + "."));
+      if (d <= 0.)
+        return;
+      // The same rounding as update_damage(); the kappa of d = 1 is the
+      // smallest history that the rounding turns into d = 1.
+      const bool full = d > 1. - 1e-6;
+      state[kappa]    = kappa_from_damage(full ? 1. - 1e-6 : d);
+      // d(kappa) may exceed d by round-off; taking the larger keeps an
+      // unloaded point exactly where it is in update_damage().
+      state[damage_variable] =
+        full ? 1. : std::max(d, damage_from_kappa(state[kappa]));
+    }
+
+
+    double
+    Chalk::kappa_from_damage(const double d) const
+    {
+      AssertThrow(d >= 0. && d < 1.,
+                  ExcMessage("Chalk::kappa_from_damage: d must lie in [0, "
+                             "1)."));
+      // With x = kappa/sigma_f: g(x) = ln x + 2 (x - 1)/(eta - 1) =
+      // -ln(1 - d), increasing from g(1) = 0; ln x >= 0 bounds x from
+      // above. Bisection: set-up code, 100 halvings reach round-off.
+      const double target = -std::log1p(-d);
+      const double c      = 2. / (parameters.ductility - 1.);
+      double       lo = 1., hi = 1. + target / c;
+      for (unsigned int i = 0; i < 100 && hi - lo > 1e-16 * hi; ++i)
+        {
+          const double mid = 0.5 * (lo + hi);
+          if (std::log(mid) + c * (mid - 1.) < target)
+            lo = mid;
+          else
+            hi = mid;
+        }
+      return 0.5 * (lo + hi) * parameters.initiation_stress;
     }
 
 
@@ -259,7 +324,8 @@ namespace scarp
             hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
           // Effective (undamaged) principal Kirchhoff stress.
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
-          std::array<double, 3> dep = {{0., 0., 0.}};
+          const std::array<double, 3> tau_trial = tau;
+          std::array<double, 3>       dep       = {{0., 0., 0.}};
           if (plasticity_enabled && mohr_coulomb.return_stress(tau) !=
                                       MohrCoulombReturn::Region::elastic)
             {
@@ -277,14 +343,18 @@ namespace scarp
           store_symmetric(compose(e.values, e.vectors), state + elastic_strain);
 
           const double J = determinant(batch.F[q]);
-          // Driver from the undamaged Cauchy stress tau / J (after the
-          // plastic correction); fully damaged points contribute nothing.
-          const double Y =
-            (d >= 1.)
-              ? 0.
-              : driver_from_principal({{tau[0] / J, tau[1] / J, tau[2] / J}},
-                                      driver_scale,
-                                      driver_friction);
+          // Driver from the undamaged Cauchy stress tau / J, after the
+          // plastic correction or of the trial; fully damaged points
+          // contribute nothing.
+          const std::array<double, 3> &tau_y =
+            (parameters.driving_stress == DrivingStress::trial) ? tau_trial
+                                                                : tau;
+          const double Y       = (d >= 1.)
+                                   ? 0.
+                                   : driver_from_principal(
+                                 {{tau_y[0] / J, tau_y[1] / J, tau_y[2] / J}},
+                                 driver_scale,
+                                 driver_friction);
           state[damage_driver] = Y;
           if (batch.damage_driver != nullptr)
             batch.damage_driver[q] = Y;
@@ -316,7 +386,8 @@ namespace scarp
                          const double dt,
                          double      *state) const
     {
-      const double d_n = state[damage_variable];
+      const double d_n              = state[damage_variable];
+      state[Chalk::nonlocal_driver] = nonlocal_driver;
       if (!damage_enabled || d_n >= 1.)
         return;
       // Exact integration of kappa_dot = <Ybar - kappa>/tau over the step

@@ -297,6 +297,34 @@ namespace scarp
                       body.cliff =
                         scenes::ShapeFactory<dim>::create_cliff_profile(prm);
                       body.cliff->set_cell_size(grid.coarse_cell_size());
+                      body.cliff->set_nonlocal_length(
+                        materials[body.material]->nonlocal_length());
+                      if (body.cliff->has_crack_band())
+                        body.cliff->crack_band_half_width(); // needs l_c
+                      // The base layer must lie inside the mesh.
+                      const auto  &domain = grid.domain();
+                      const double bottom = body.cliff->bottom_level();
+                      if (body.cliff->has_base_layer() &&
+                          (bottom < domain.lower_bound(1) - 1e-12 ||
+                           body.cliff->base_layer_end() >
+                             domain.upper_bound(0) + 1e-12))
+                        throw ScarpError(
+                          "Cliff/Base layer thickness (" +
+                          Utilities::to_string(
+                            body.cliff->get_parameters().base_layer_thickness) +
+                          " m below Beach level, down to y = " +
+                          Utilities::to_string(bottom) +
+                          ") and Cliff/Base layer extent (to x = " +
+                          Utilities::to_string(body.cliff->base_layer_end()) +
+                          ") must fit in the mesh box from Mesh/Lower corner "
+                          "(" +
+                          Utilities::to_string(domain.lower_bound(0)) + ", " +
+                          Utilities::to_string(domain.lower_bound(1)) +
+                          ") to Mesh/Upper corner (" +
+                          Utilities::to_string(domain.upper_bound(0)) + ", " +
+                          Utilities::to_string(domain.upper_bound(1)) +
+                          "): lower the Lower corner below the layer, or "
+                          "reduce the layer.");
                     }
                   else
                     throw ScarpError("the cliff shape is two-dimensional.");
@@ -579,9 +607,18 @@ namespace scarp
               for (const auto &region : predamaged)
                 damaged = damaged || region->contains(x);
               if constexpr (dim == 2)
-                if (body.cliff && body.cliff->has_crack() &&
-                    body.cliff->crack_region().contains(x))
-                  damaged = true;
+                if (body.cliff && body.cliff->has_crack())
+                  {
+                    // A pre-damage band replaces the fully damaged box.
+                    if (body.cliff->has_crack_band())
+                      {
+                        const double d = body.cliff->crack_band_damage(x);
+                        if (d > 0. && !damaged)
+                          material.set_initial_damage(p + layout.state, d);
+                      }
+                    else if (body.cliff->crack_region().contains(x))
+                      damaged = true;
+                  }
               if (damaged)
                 material.set_fully_damaged(p + layout.state);
             };
@@ -762,11 +799,22 @@ namespace scarp
           if (any)
             local_boxes.emplace_back(std::make_pair(lower, upper));
         }
+      // Fully damaged points of materials with 'Nonlocal exclude fully
+      // damaged' are left out of both sums of the average.
+      std::vector<bool> is_source(damage_points.position.size());
+      for (std::size_t k = 0; k < is_source.size(); ++k)
+        {
+          const double *p = damage_points.properties[k];
+          is_source[k] =
+            materials[static_cast<unsigned int>(p[layout.material_id])]
+              ->is_nonlocal_source(p + layout.state);
+        }
       averager->compute(local_boxes,
                         damage_points.position,
                         damage_points.volume,
                         damage_points.driver,
                         damage_points.receiver,
+                        is_source,
                         damage_points.id,
                         nonlocal_driver);
       for (std::size_t k = 0; k < damage_points.position.size(); ++k)

@@ -20,6 +20,16 @@ namespace scarp
       local
     };
 
+    /// Stress the local damage driver Y is computed from.
+    enum class DrivingStress
+    {
+      /// Effective stress after the Mohr-Coulomb return (default).
+      corrected,
+      /// Elastic trial (undamaged predictor) stress, before the return
+      /// (design note, section 3, item 1).
+      trial
+    };
+
     /**
      * @brief Chalk damage-plasticity (doc/materials.md, design note
      * chalk-model.md): Hencky elasticity and Mohr-Coulomb plasticity in the
@@ -44,7 +54,8 @@ namespace scarp
         kappa               = 9,  ///< stress history [Pa]
         damage_dissipation  = 10, ///< [J/m^3]
         damage_driver       = 11, ///< last local driver Y [Pa] (output)
-        n_state             = 12
+        nonlocal_driver     = 12, ///< last non-local driver Ybar [Pa] (output)
+        n_state             = 13
       };
 
       /**
@@ -69,6 +80,12 @@ namespace scarp
         double residual_tensile_ratio     = 1.e-9;
         double residual_compressive_ratio = 1.e-2;
         double residual_shear_ratio       = 5.e-3;
+        /// Stress of the local driver Y: after the return or trial.
+        DrivingStress driving_stress = DrivingStress::corrected;
+        /// Leave fully damaged points (d = 1) out of both sums of the
+        /// non-local average, as the authors' code does; otherwise they stay
+        /// in the denominator with Y = 0.
+        bool exclude_fully_damaged = false;
 
         /// Declare the entries in the current subsection.
         static void
@@ -107,7 +124,8 @@ namespace scarp
       }
 
       /// elastic_strain_xx..xz, plastic_strain, plastic_dissipation,
-      /// damage, kappa, damage_dissipation, damage_driver.
+      /// damage, kappa, damage_dissipation, damage_driver,
+      /// nonlocal_driver.
       std::vector<std::string>
       state_variable_names() const override;
 
@@ -148,9 +166,29 @@ namespace scarp
       void
       set_fully_damaged(double *state) const override;
 
+      /// d as given (d > 1 - 1e-6 -> 1, as in update_damage()) and kappa =
+      /// the history that gives it, d(kappa) = d (at d = 1: the kappa of
+      /// d = 1 - 1e-6); kappa = 0 for d = 0.
+      void
+      set_initial_damage(double *state, const double d) const override;
+
+      /// False for d = 1 if Nonlocal exclude fully damaged is set.
+      bool
+      is_nonlocal_source(const double *state) const override
+      {
+        return !(parameters.exclude_fully_damaged &&
+                 state[damage_variable] >= 1.);
+      }
+
+      /// Inverse of damage_from_kappa() for d in [0, 1): the kappa >= sigma_f
+      /// with d(kappa) = d (sigma_f for d = 0).
+      double
+      kappa_from_damage(const double d) const;
+
       /// kappa += (1 - exp(-dt/tau)) <Ybar - kappa>, d = max(d_n,
       /// d(kappa)), d > 1 - 1e-6 -> 1; accumulates the released energy.
-      /// No-op while damage is switched off.
+      /// Ybar is kept in the state (nonlocal_driver) for output; the rest
+      /// is a no-op while damage is switched off.
       void
       update_damage(const double nonlocal_driver,
                     const double dt,

@@ -121,6 +121,25 @@ namespace scarp
         return 0.;
       }
 
+      /// Give a point an initial damage @p d in [0, 1] with a consistent
+      /// history (a pre-damage band). Models without damage accept only 0.
+      virtual void
+      set_initial_damage(double * /*state*/, const double d) const
+      {
+        AssertThrow(d <= 0.,
+                    ExcMessage("This material model has no damage: its "
+                               "points cannot start damaged."));
+      }
+
+      /// Whether a point with this state is a source of the non-local
+      /// average (true unless the model leaves fully damaged points out of
+      /// both sums).
+      virtual bool
+      is_nonlocal_source(const double * /*state*/) const
+      {
+        return true;
+      }
+
       /// Set a point to fully damaged (d = 1), e.g. a pre-existing crack.
       virtual void
       set_fully_damaged(double * /*state*/) const
