@@ -10,6 +10,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 namespace
@@ -110,10 +111,10 @@ main(int argc, char **argv)
         }
       if (args.size() != 1 || args[0].rfind("-", 0) == 0)
         throw ScarpError("expected one scene file; see scarp --help.");
+      // An unreadable file is reported by the parser, in the format of
+      // every other input error.
       const std::string filename = args[0];
-      if (!std::ifstream(filename))
-        throw ScarpError("cannot read the scene file <" + filename + ">.");
-      const auto lists = simulation::SceneLists::read(filename);
+      const auto        lists    = simulation::SceneLists::read(filename);
       if (lists.dimension == 2)
         run_scene<2>(filename, lists);
       else
@@ -127,10 +128,16 @@ main(int argc, char **argv)
     }
   catch (const ExceptionBase &e)
     {
+      // Input errors arrive as ScarpError with a readable line; a deal.II
+      // exception here is a bug or an unforeseen case: its own text (not
+      // what() with the source location and exception name) is what helps.
       if (is_root)
-        std::cerr << "\nscarp: error in the input: " << e.get_exc_name()
-                  << "\n"
-                  << e.what() << std::endl;
+        {
+          std::ostringstream info;
+          e.print_info(info);
+          std::cerr << "\nscarp: error: " << Utilities::trim(info.str())
+                    << std::endl;
+        }
       return 1;
     }
   catch (const std::exception &e)

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
 #include <scarp/materials/material_factory.h>
 #include <scarp/materials/point_driver.h>
 
@@ -44,7 +46,10 @@ main(int argc, char **argv)
     }
   try
     {
-      prm.parse_input(argv[1]);
+      // The scene reader's parser: includes relative to the including
+      // file, errors as one line with file, line, entry and what is
+      // accepted.
+      scarp::ParameterTools::parse_file(prm, argv[1]);
 
       prm.enter_subsection("Material");
       const std::unique_ptr<Material> material = MaterialFactory::create(prm);
@@ -63,6 +68,11 @@ main(int argc, char **argv)
       PointDriver::write_csv(records, out);
       std::cout << "Wrote " << records.size() << " rows to " << path.output_file
                 << '\n';
+    }
+  catch (const scarp::ScarpError &exc)
+    {
+      std::cerr << "scarp_point_driver: error: " << exc.what() << std::endl;
+      return 1;
     }
   catch (const std::exception &exc)
     {

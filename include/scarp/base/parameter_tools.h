@@ -40,8 +40,15 @@ namespace scarp
 
     /// Parse @p filename into @p prm with `include` lines resolved relative
     /// to the directory of the including file, at any depth (deal.II
-    /// resolves them relative to the working directory). Errors name the
-    /// file and line the user wrote; an include cycle is an error.
+    /// resolves them relative to the working directory). An error is a
+    /// ScarpError of one line in the words of the scene file, never deal.II's
+    /// exception text: "FILE:LINE: invalid value <VALUE> for
+    /// <Subsection/Entry>; accepted: WHAT.", "FILE:LINE: unknown entry
+    /// <...>.", "FILE:LINE: unknown subsection <...>.", "FILE:LINE:
+    /// subsection <...> is not closed: an 'end' line is missing.", "FILE:
+    /// cannot read the file (REASON)."; FILE is the file the user wrote the
+    /// line in (an included one, named relative to the scene file's
+    /// directory as given). An include cycle is an error.
     void
     parse_file(ParameterHandler  &prm,
                const std::string &filename,
