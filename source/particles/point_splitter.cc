@@ -10,25 +10,13 @@ namespace scarp
   namespace particles
   {
     template <int dim>
-    void
-    PointSplitter<dim>::record(const Particles::ParticleHandler<dim> &particles,
-                               const Triangulation<dim>              &tria)
-    {
-      recorded.clear();
-      for (const auto &cell : tria.active_cell_iterators())
-        if (cell->is_locally_owned() && cell->refine_flag_set())
-          for (const auto &particle : particles.particles_in_cell(cell))
-            recorded.emplace_back(particle.get_id(), cell->level());
-      std::sort(recorded.begin(), recorded.end());
-    }
-
-
-    template <int dim>
     types::particle_index
-    PointSplitter<dim>::split(Particles::ParticleHandler<dim> &particles,
-                              const PropertyLayout<dim>       &layout,
-                              const BoundingBox<dim>          &box,
-                              const MPI_Comm                   communicator)
+    PointSplitter<dim>::split(
+      Particles::ParticleHandler<dim> &particles,
+      const PropertyLayout<dim>       &layout,
+      const std::vector<unsigned int> &points_per_direction,
+      const BoundingBox<dim>          &box,
+      const MPI_Comm                   communicator)
     {
       constexpr unsigned int n_children = 1u << dim;
       struct Child
@@ -41,20 +29,18 @@ namespace scarp
       types::particle_index max_id = 0;
       for (auto &particle : particles)
         {
-          max_id = std::max(max_id, particle.get_id());
-          const auto it =
-            std::lower_bound(recorded.begin(),
-                             recorded.end(),
-                             std::make_pair(particle.get_id(), 0u));
-          if (it == recorded.end() || it->first != particle.get_id())
+          max_id                  = std::max(max_id, particle.get_id());
+          double *const      p    = particle.get_properties().data();
+          const double       V0   = p[layout.reference_volume];
+          const double       side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
+          const auto         cell = particle.get_surrounding_cell();
+          const double       h    = cell->vertex(1)[0] - cell->vertex(0)[0];
+          const unsigned int n =
+            points_per_direction[static_cast<unsigned int>(p[layout.body_id])];
+          // Between the lattice side h/n of the cell and twice it.
+          if (!(side > std::sqrt(2.) * h / n))
             continue;
-          const auto cell = particle.get_surrounding_cell();
-          if (static_cast<unsigned int>(cell->level()) <= it->second)
-            continue;
-          double *const    p    = particle.get_properties().data();
-          const Point<dim> x    = particle.get_location();
-          const double     V0   = p[layout.reference_volume];
-          const double     side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
+          const Point<dim> x = particle.get_location();
           // Half-widths of the domain, clipped to the mesh box.
           double l[dim];
           for (unsigned int d = 0; d < dim; ++d)
@@ -67,7 +53,7 @@ namespace scarp
           const Point<dim> X(layout.get_vector(p, layout.reference_position));
           p[layout.mass] /= n_children;
           p[layout.reference_volume] /= n_children;
-          std::vector<double> parent(p, p + layout.n_properties());
+          const std::vector<double> parent(p, p + layout.n_properties());
           for (unsigned int c = 0; c < n_children; ++c)
             {
               Tensor<1, dim> offset;
@@ -87,7 +73,6 @@ namespace scarp
               children.push_back(std::move(child));
             }
         }
-      recorded.clear();
 
       // Ids: ranks take consecutive ranges above the largest id in use.
       max_id = Utilities::MPI::max(max_id, communicator);
@@ -100,8 +85,8 @@ namespace scarp
       types::particle_index id = max_id + 1 + first;
       for (const Child &child : children)
         {
-          // The reference location is the cell's (sorting fixes a child
-          // that lies in a neighbour).
+          // The reference location in the parent's cell (sorting moves a
+          // child that lies in a neighbour).
           const Point<dim> x0 = child.cell->vertex(0);
           const double     h  = child.cell->vertex(1)[0] - x0[0];
           Point<dim>       xi;

@@ -5,6 +5,7 @@
 
 #include <scarp/base/exceptions.h>
 #include <scarp/base/parameter_tools.h>
+#include <scarp/grid/refinement_marker.h>
 #include <scarp/materials/chalk.h>
 #include <scarp/materials/material_factory.h>
 #include <scarp/particles/body_seeder.h>
@@ -466,6 +467,12 @@ namespace scarp
                            std::max(length, 1e-300),
                            nonlocal_parameters.skin_fraction);
         }
+      if (grid.adaptive_refinement && !any_damage)
+        throw ScarpError(
+          "Mesh/Refinement: <Adaptive refinement> = true refines where a "
+          "material damages, but no material of this scene has damage "
+          "(<Model> = chalk); switch it off, or use <Initial levels> and "
+          "<Initial region> for a fixed refined region.");
     }
 
 
@@ -490,8 +497,7 @@ namespace scarp
       double rho_max = 0;
       for (const auto &m : materials)
         rho_max = std::max(rho_max, m->density());
-      mpm->set_mass_cutoff(transfer_parameters.mass_cutoff * rho_max *
-                           std::pow(grid.minimum_cell_size(), dim));
+      mpm->set_mass_cutoff_density(transfer_parameters.mass_cutoff * rho_max);
       last_report = measure();
       initial_energy =
         last_report.kinetic_energy + last_report.gravitational_energy;
@@ -817,13 +823,25 @@ namespace scarp
                         is_source,
                         damage_points.id,
                         nonlocal_driver);
+      // Points whose driver approaches their damage threshold seed the
+      // refinement pass at the end of this step (before the update: the
+      // threshold the driver is compared with is the one it had to pass).
+      const bool gather_precursors =
+        refinement_due() && grid.refinement_driver_fraction > 0;
       for (std::size_t k = 0; k < damage_points.position.size(); ++k)
         if (damage_points.receiver[k])
           {
-            double *p = damage_points.properties[k];
-            materials[static_cast<unsigned int>(p[layout.material_id])]
-              ->update_damage(nonlocal_driver[k], dt, p + layout.state);
+            double     *p = damage_points.properties[k];
+            const auto &m =
+              *materials[static_cast<unsigned int>(p[layout.material_id])];
+            if (gather_precursors &&
+                nonlocal_driver[k] > grid.refinement_driver_fraction *
+                                       m.damage_threshold(p + layout.state))
+              precursor_ids.push_back(damage_points.id[k]);
+            m.update_damage(nonlocal_driver[k], dt, p + layout.state);
           }
+      if (gather_precursors)
+        std::sort(precursor_ids.begin(), precursor_ids.end());
     }
 
 
@@ -940,7 +958,7 @@ namespace scarp
           failure_time = current_time;
           cliff_snapshot("failure");
         }
-      if (grid.adaptive_refinement && step % grid.refinement_interval == 0)
+      if (refinement_due())
         refine_mesh();
       else if (balance_interval > 0 && step % balance_interval == 0)
         rebalance_if_needed();
@@ -957,61 +975,66 @@ namespace scarp
 
 
     template <int dim>
+    bool
+    Simulation<dim>::refinement_due() const
+    {
+      return grid.adaptive_refinement && step % grid.refinement_interval == 0;
+    }
+
+
+    template <int dim>
     void
     Simulation<dim>::refine_mesh()
     {
       TimerOutput::Scope scope(timer, "refinement");
       auto              &tria = grid.triangulation();
+      ++n_refinement_checks;
+      // Seeds: cells with a damaged point, or with a point whose non-local
+      // driver approaches its damage threshold (gathered in the non-local
+      // step). Both are properties of the points, so the seeds do not
+      // depend on the partition.
+      std::vector<typename Triangulation<dim>::active_cell_iterator> seeds;
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
-          {
-            bool damaged = false;
-            for (const auto &particle : particles.particles_in_cell(cell))
-              {
-                const double *p = particle.get_properties().data();
-                const auto   &m =
-                  *materials[static_cast<unsigned int>(p[layout.material_id])];
-                if (m.damage(p + layout.state) > grid.refinement_damage_limit)
-                  {
-                    damaged = true;
-                    break;
-                  }
-              }
-            if (damaged)
-              {
-                if (static_cast<unsigned int>(cell->level()) <
-                    grid.max_refinement_level)
-                  cell->set_refine_flag();
-              }
-            else if (cell->level() > 0 &&
-                     !(static_cast<unsigned int>(cell->level()) <=
-                         grid.initial_levels &&
-                       grid.initial_region.point_inside(cell->center())))
-              cell->set_coarsen_flag();
-          }
-      // A ring of refined cells around the damaged ones.
-      std::vector<typename Triangulation<dim>::active_cell_iterator> ring;
-      for (const auto &cell : tria.active_cell_iterators())
-        if (cell->is_locally_owned() && cell->refine_flag_set())
-          for (const unsigned int f : cell->face_indices())
-            if (!cell->at_boundary(f) && cell->neighbor(f)->is_active() &&
-                cell->neighbor(f)->is_locally_owned())
-              ring.push_back(cell->neighbor(f));
-      for (const auto &cell : ring)
-        {
-          cell->clear_coarsen_flag();
-          if (static_cast<unsigned int>(cell->level()) <
-              grid.max_refinement_level)
-            cell->set_refine_flag();
-        }
+          for (const auto &particle : particles.particles_in_cell(cell))
+            {
+              const double *p = particle.get_properties().data();
+              const auto   &m =
+                *materials[static_cast<unsigned int>(p[layout.material_id])];
+              if (m.damage(p + layout.state) > grid.refinement_damage_limit ||
+                  std::binary_search(precursor_ids.begin(),
+                                     precursor_ids.end(),
+                                     particle.get_id()))
+                {
+                  seeds.push_back(cell);
+                  break;
+                }
+            }
+      precursor_ids.clear();
+      const double buffer =
+        grid.refinement_buffer * (averager ? averager->cutoff_radius() : 0.);
+      if (grid::RefinementMarker<dim>::mark(
+            tria, seeds, buffer, grid.max_refinement_level) == 0)
+        return;
       particles.prepare_for_coarsening_and_refinement();
       tria.execute_coarsening_and_refinement();
       particles.unpack_after_coarsening_and_refinement();
-      grid.setup_dofs();
+      std::vector<unsigned int> per_direction;
+      for (const auto &body : bodies)
+        per_direction.push_back(body.per_direction);
+      n_split += particles::PointSplitter<dim>::split(
+        particles, layout, per_direction, grid.domain(), communicator);
+      particles.sort_particles_into_subdomains_and_cells();
+      // Splitting changed the points per cell: repartition by them.
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        balance_load();
+      else
+        grid.setup_dofs();
       mpm->setup();
       local_boxes.clear();
       if (averager)
         averager->invalidate_neighbour_lists();
+      ++n_refinement_passes;
     }
 
 
@@ -1118,6 +1141,15 @@ namespace scarp
                   double(Utilities::MPI::n_mpi_processes(communicator)));
       summary.add("steps", double(step));
       summary.add("load_rebalances", double(n_rebalances));
+      if (grid.adaptive_refinement)
+        {
+          postprocess::JsonObject refinement;
+          refinement.add("checks", double(n_refinement_checks));
+          refinement.add("passes", double(n_refinement_passes));
+          refinement.add("points_split", double(n_split));
+          refinement.add("finest_cell", grid.minimum_cell_size());
+          summary.add("refinement", refinement);
+        }
       summary.add("time", current_time);
       summary.add("material_points", last_report.n_points);
       summary.add("cells",

@@ -304,9 +304,6 @@ namespace
     for (const auto &cell : tria.active_cell_iterators())
       if (cell->is_locally_owned() && cell->center()[0] < 3)
         cell->set_refine_flag();
-    tria.prepare_coarsening_and_refinement();
-    scarp::particles::PointSplitter<dim> splitter;
-    splitter.record(particles, tria);
     particles.prepare_for_coarsening_and_refinement();
     tria.execute_coarsening_and_refinement();
     particles.unpack_after_coarsening_and_refinement();
@@ -314,7 +311,12 @@ namespace
     for (unsigned int d = 0; d < dim; ++d)
       upper[d] = 8.;
     const BoundingBox<dim> box(std::make_pair(Point<dim>(), upper));
-    const auto n_split = splitter.split(particles, layout, box, MPI_COMM_WORLD);
+    // Seeded with 2 points per cell direction (body 0).
+    const auto n_split = scarp::particles::PointSplitter<dim>::split(
+      particles, layout, {2}, box, MPI_COMM_WORLD);
+    // A second pass finds nothing more to split.
+    const auto n_again = scarp::particles::PointSplitter<dim>::split(
+      particles, layout, {2}, box, MPI_COMM_WORLD);
     particles.sort_particles_into_subdomains_and_cells();
     const auto after = totals();
 
@@ -326,6 +328,7 @@ namespace
           << " -> " << after[1] << ", angular " << before[2] << " -> "
           << after[2] << std::endl;
     check(n_split == expected, "every point of a refined cell split");
+    check(n_again == 0, "children are not split again");
     check(particles.n_global_particles() ==
             n_before + expected * ((1u << dim) - 1),
           "2^dim children each");

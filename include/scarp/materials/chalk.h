@@ -1,6 +1,8 @@
 #ifndef scarp_materials_chalk_h
 #define scarp_materials_chalk_h
 
+#include <algorithm>
+
 #include <scarp/materials/isotropic_elasticity.h>
 #include <scarp/materials/material.h>
 #include <scarp/materials/mohr_coulomb_return.h>
@@ -161,6 +163,14 @@ namespace scarp
       damage(const double *state) const override
       {
         return state[damage_variable];
+      }
+
+      /// max(sigma_f, kappa): damage grows once the history kappa, driven
+      /// towards Ybar, passes the initiation stress and its last value.
+      double
+      damage_threshold(const double *state) const override
+      {
+        return std::max(parameters.initiation_stress, state[kappa]);
       }
 
       void

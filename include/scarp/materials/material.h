@@ -5,6 +5,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,14 @@ namespace scarp
       }
 
       /// Set a point to fully damaged (d = 1), e.g. a pre-existing crack.
+      /// The value the non-local driver must exceed for damage to grow
+      /// (refinement ahead of the damage front); +inf without damage.
+      virtual double
+      damage_threshold(const double * /*state*/) const
+      {
+        return std::numeric_limits<double>::infinity();
+      }
+
       virtual void
       set_fully_damaged(double * /*state*/) const
       {

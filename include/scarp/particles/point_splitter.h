@@ -36,26 +36,21 @@ namespace scarp
     class PointSplitter
     {
     public:
-      /// Remember the points of the locally owned cells that carry a refine
-      /// flag (after Triangulation::prepare_coarsening_and_refinement()),
-      /// with their cell's level.
-      void
-      record(const Particles::ParticleHandler<dim> &particles,
-             const Triangulation<dim>              &tria);
-
-      /// After the refinement (and the particle handler's unpack): split
-      /// each recorded point whose cell is now finer than it was. Returns
-      /// the number of points split on all ranks (collective). The caller
-      /// sorts the particles into cells afterwards.
-      types::particle_index
+      /// Split every locally owned point that is too large for its cell:
+      /// its domain side V0^(1/dim) exceeds sqrt(2) h_K / n_b, with h_K the
+      /// edge of its cell and n_b the points per cell direction of its body
+      /// (@p points_per_direction, by body id). After a refinement this is
+      /// every point of a refined cell; a point that drifted into a finer
+      /// cell is split at the next pass too. The rule reads only the point
+      /// and its cell, so it gives the same points on any partition.
+      /// Returns the number of points split on all ranks (collective); the
+      /// caller sorts the particles into cells afterwards.
+      static types::particle_index
       split(Particles::ParticleHandler<dim> &particles,
             const PropertyLayout<dim>       &layout,
+            const std::vector<unsigned int> &points_per_direction,
             const BoundingBox<dim>          &box,
             const MPI_Comm                   communicator);
-
-    private:
-      /// Sorted (id, level) of the recorded points.
-      std::vector<std::pair<types::particle_index, unsigned int>> recorded;
     };
   } // namespace particles
 } // namespace scarp

@@ -11,6 +11,7 @@
 #include <scarp/materials/material.h>
 #include <scarp/nonlocal/nonlocal_averager.h>
 #include <scarp/nonlocal/parameters.h>
+#include <scarp/particles/point_splitter.h>
 #include <scarp/particles/property_layout.h>
 #include <scarp/postprocess/cliff_diagnostics.h>
 #include <scarp/postprocess/json_writer.h>
@@ -200,8 +201,14 @@ namespace scarp
       print_progress(const transfer::StepReport &report,
                      const Stage                &stage,
                      const bool                  force);
+      /// A refinement pass: flags from the criteria, refinement, splitting,
+      /// load balance (see doc/refinement.md). Does nothing when no cell is
+      /// flagged anywhere.
       void
       refine_mesh();
+      /// True when a refinement pass is due at the end of this step.
+      bool
+      refinement_due() const;
       /// Material points of the cliff bodies, gathered on rank 0.
       std::vector<postprocess::CliffDiagnostics::Particle>
       gather_cliff_points() const;
@@ -231,7 +238,14 @@ namespace scarp
       std::vector<double>                               nonlocal_driver;
       bool                                              any_damage = false;
       std::vector<BoundingBox<dim>>                     local_boxes;
-      boost::signals2::connection                       weight_connection;
+      /// Refinement: ids of points whose non-local driver is near their
+      /// damage threshold (sorted), gathered in the non-local step before a
+      /// refinement pass.
+      std::vector<types::particle_index> precursor_ids;
+      unsigned int                       n_refinement_passes = 0;
+      unsigned int                       n_refinement_checks = 0;
+      types::particle_index              n_split             = 0;
+      boost::signals2::connection        weight_connection;
 
       Tensor<1, dim>                                  gravity;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
