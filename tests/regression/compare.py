@@ -9,35 +9,34 @@ spirit of the `.output` files of deal.II and ASPECT: a change that moves the
 results of a scene beyond round-off shows up as a failed test with the
 quantities that moved and by how much.
 
-What is compared, and how:
+What is compared, and how (T: the tolerance, chosen per scene in
+tests/regression/CMakeLists.txt with the reason for its size):
 
 * summary.json: every number and string, recursively, except what depends on
   the machine or the partition (wall times, speeds, rank counts, repartition
-  and neighbour-list counts). Strings (how the run ended) must be equal;
-  numbers x within |x - e| <= T * max(|e|, floor) of the expected e, where
-  floor is FLOOR times the largest of the final energies for an energy
-  (a balance residual or a dissipation that is zero up to round-off), else
-  nothing: other sections mix units (the cliff's joules and metres).
-* statistics.csv: the same columns and rows (the step column exactly: a
-  different step count is a different run), every other column with
-  |x - e| <= T * scale, scale = max(max over the column of |e|, FLOOR *
-  max over its group of columns): columns such as momenta swing through
-  zero, so their own row value is no scale; the group (energies and works,
-  momenta, angular momenta) gives a floor to a column that is zero up to
-  round-off, e.g. the horizontal momentum of a symmetric column, which is
-  then compared at the scale of its neighbours, not at its own 1e-14.
-  Not compared: the time step of the last step (its row may be written
-  twice), the remainder up to the end time (End time minus the time before: its digits are noise in any run
-  that is not bitwise the same; the time column holds what it means).
+  and neighbour-list counts). Strings (how the run ended) and counts
+  (steps, material points, cells) must be equal; a number x must be within
+  |x - e| <= T * max(|e|, floor) of the expected e. The floor is FLOOR times
+  the largest final energy for the entries of "energies" (a dissipation or
+  a balance residual can be zero up to round-off) and zero elsewhere (other
+  sections mix units: the cliff's joules and metres).
+* statistics.csv: the same columns and rows; the step and point counts
+  exactly (a different step count is a different run), every other value
+  within |x - e| <= T * scale. The scale of a column is the largest |e| in
+  it (momenta swing through zero: a row's own value is no scale), at least
+  FLOOR times the largest value of its group (energies and works, momenta,
+  angular momenta): a column that is zero up to round-off, such as the
+  horizontal momentum of a symmetric column, is compared at the scale of
+  its neighbours, not at its own 1e-14. The time step of the last step is
+  not compared: it is the remainder up to the end time, whose digits are
+  noise in any run that is not bitwise the same (the time column holds
+  what it means).
+* --ignore NAME (repeatable) leaves out a summary entry (its dotted path,
+  e.g. cliff.run_out_m) or a statistics column that a scene cannot pin down.
 
-FLOOR = 1e-3: far above round-off relative to the group, far below anything
-a physical change would move.
-
-Integer counts (material points, steps, cells) are compared exactly.
---ignore NAME (repeatable) leaves out a summary entry (its dotted path, e.g.
-cliff.run_out_m) or a statistics column that a scene cannot pin down.
-The tolerance T is chosen per scene in tests/regression/CMakeLists.txt,
-where the reason for its size is written next to it.
+FLOOR = 1e-3: a quantity a thousandth of its neighbours carries no
+information of its own at round-off level, and a physical change that moves
+it moves them too.
 
 Exit status 0 when everything matches, 1 otherwise (a table of the worst
 differences is printed either way).
