@@ -220,6 +220,52 @@ namespace scarp
 
     template <int dim>
     void
+    MpmTransfer<dim>::compute_shapes()
+    {
+      // All sweeps of a step evaluate the shape functions at the points'
+      // positions of the step's start (the reference locations change only
+      // in the sort after the step): evaluate once, keep the non-zero ones.
+      shape_begin.clear();
+      shape_node.clear();
+      shape_value.clear();
+      shape_gradient.clear();
+      shape_begin.push_back(0);
+      std::vector<types::global_dof_index> dofs;
+      std::vector<Point<dim>>              node;
+      std::vector<double>                  value;
+      std::vector<Tensor<1, dim>>          gradient;
+      for (const OccupiedCell &occupied : occupied_cells)
+        {
+          double                                  h;
+          Point<dim>                              x0;
+          const typename GimpPatches<dim>::Patch *patch;
+          cell_nodes(occupied.cell, h, x0, dofs, node, patch);
+          for (const auto &particle : occupied.particles)
+            {
+              const double *p  = particle.get_properties().data();
+              const auto    xi = particle.get_reference_location();
+              shape_at(patch,
+                       xi,
+                       x0 + h * xi,
+                       h,
+                       p[layout.reference_volume],
+                       value,
+                       gradient);
+              for (unsigned int i = 0; i < value.size(); ++i)
+                if (value[i] != 0. || gradient[i].norm_square() != 0.)
+                  {
+                    shape_node.push_back(i);
+                    shape_value.push_back(value[i]);
+                    shape_gradient.push_back(gradient[i]);
+                  }
+              shape_begin.push_back(shape_node.size());
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
     MpmTransfer<dim>::particles_to_grid(const Tensor<1, dim> &gravity,
                                         const bool            momentum_only)
     {
@@ -233,9 +279,8 @@ namespace scarp
       std::array<dealii::Vector<double>, dim> local_momentum, local_force;
       std::vector<types::global_dof_index>    dofs;
       std::vector<Point<dim>>                 node;
-      std::vector<double>                     value;
-      std::vector<Tensor<1, dim>>             gradient;
       const bool                              apic = layout.has_affine;
+      unsigned int                            k    = 0; // point counter
       // GIMP patch nodes are unconstrained (the patch resolved the hanging
       // ones); Q1 cells on a mesh with hanging nodes go through the
       // constraints.
@@ -261,10 +306,9 @@ namespace scarp
           for (const auto &particle : particles)
             {
               const double    *p  = particle.get_properties().data();
-              const auto       xi = particle.get_reference_location();
-              const Point<dim> xp = x0 + h * xi;
-              shape_at(
-                patch, xi, xp, h, p[layout.reference_volume], value, gradient);
+              const Point<dim> xp = x0 + h * particle.get_reference_location();
+              const unsigned int e0 = shape_begin[k], e1 = shape_begin[k + 1];
+              ++k;
               const double         m = p[layout.mass];
               const Tensor<1, dim> v = layout.get_vector(p, layout.velocity);
               Tensor<2, dim>       C;
@@ -278,9 +322,10 @@ namespace scarp
                   // mapped here it would make the stress velocity unbounded
                   // too, and APIC blew up as soon as points crossed into
                   // empty cells (vibrating bar, rotating disk).
-                  for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int e = e0; e < e1; ++e)
                     {
-                      const double w = value[i] * m;
+                      const unsigned int i = shape_node[e];
+                      const double       w = shape_value[e] * m;
                       local_mass(i) += w;
                       for (unsigned int d = 0; d < dim; ++d)
                         local_momentum[d](i) += w * v[d];
@@ -300,14 +345,15 @@ namespace scarp
                   for (unsigned int d = 0; d < dim; ++d)
                     acceleration[d] += body_force->value(X, d);
                 }
-              for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int e = e0; e < e1; ++e)
                 {
-                  const double   w  = value[i] * m;
-                  Tensor<1, dim> vi = v;
+                  const unsigned int i  = shape_node[e];
+                  const double       w  = shape_value[e] * m;
+                  Tensor<1, dim>     vi = v;
                   if (apic)
                     vi += C * (node[i] - xp);
                   const Tensor<1, dim> f =
-                    -volume * stress_times<dim>(sigma, gradient[i]) +
+                    -volume * stress_times<dim>(sigma, shape_gradient[e]) +
                     w * acceleration;
                   local_mass(i) += w;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -514,8 +560,7 @@ namespace scarp
     {
       std::vector<types::global_dof_index> dofs;
       std::vector<Point<dim>>              node;
-      std::vector<double>                  value;
-      std::vector<Tensor<1, dim>>          gradient;
+      unsigned int                         k      = 0; // point counter
       const double                         alpha  = parameters.flip_fraction;
       const bool                           apic   = layout.has_affine;
       const BoundingBox<dim>              &domain = grid.domain();
@@ -555,27 +600,24 @@ namespace scarp
 
           for (auto &particle : particles)
             {
-              double    *p  = particle.get_properties().data();
-              const auto xi = particle.get_reference_location();
-              shape_at(patch,
-                       xi,
-                       x0 + h * xi,
-                       h,
-                       p[layout.reference_volume],
-                       value,
-                       gradient);
+              double            *p  = particle.get_properties().data();
+              const auto         xi = particle.get_reference_location();
+              const unsigned int e0 = shape_begin[k], e1 = shape_begin[k + 1];
+              ++k;
               if (update_positions_and_velocities)
                 {
                   Tensor<1, dim> v_grid, dv;
                   Tensor<2, dim> grad_v;
-                  for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int e = e0; e < e1; ++e)
                     {
-                      v_grid += value[i] * v_new[i];
-                      dv += value[i] * (v_new[i] - v_old[i]);
+                      const unsigned int i = shape_node[e];
+                      v_grid += shape_value[e] * v_new[i];
+                      dv += shape_value[e] * (v_new[i] - v_old[i]);
                     }
-                  for (unsigned int i = 0; i < n; ++i)
-                    if (!empty[i])
-                      grad_v += outer_product(v_new[i] - v_grid, gradient[i]);
+                  for (unsigned int e = e0; e < e1; ++e)
+                    if (!empty[shape_node[e]])
+                      grad_v += outer_product(v_new[shape_node[e]] - v_grid,
+                                              shape_gradient[e]);
                   Tensor<1, dim> v;
                   if (apic)
                     {
@@ -614,12 +656,13 @@ namespace scarp
               if (update_stress)
                 {
                   Tensor<1, dim> v_point;
-                  for (unsigned int i = 0; i < n; ++i)
-                    v_point += value[i] * v_stress[i];
+                  for (unsigned int e = e0; e < e1; ++e)
+                    v_point += shape_value[e] * v_stress[shape_node[e]];
                   Tensor<2, dim> L;
-                  for (unsigned int i = 0; i < n; ++i)
-                    if (!empty[i])
-                      L += outer_product(v_stress[i] - v_point, gradient[i]);
+                  for (unsigned int e = e0; e < e1; ++e)
+                    if (!empty[shape_node[e]])
+                      L += outer_product(v_stress[shape_node[e]] - v_point,
+                                         shape_gradient[e]);
                   // Cayley (midpoint) increment: exactly a rotation when L
                   // is a spin, so rigid rotation creates no stress.
                   const Tensor<2, dim> half_step = 0.5 * dt * L;
@@ -806,6 +849,7 @@ namespace scarp
       if (damage_points)
         damage_points->clear();
       find_occupied_cells();
+      compute_shapes();
       particles_to_grid(gravity, false);
       solve_grid(dt, damping, report);
       if (parameters.scheme == UpdateScheme::usl)

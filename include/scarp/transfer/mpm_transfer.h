@@ -177,6 +177,9 @@ namespace scarp
                std::vector<Tensor<1, dim>>            &gradient) const;
       void
       compute_node_cutoffs();
+      /// Fill the shape cache for the points of the occupied cells.
+      void
+      compute_shapes();
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
       void
@@ -213,6 +216,15 @@ namespace scarp
       /// Rebuild occupied_cells.
       void
       find_occupied_cells();
+
+      /// Non-zero shape functions of every point of the occupied cells (in
+      /// the order of occupied_cells and their points) for this step:
+      /// entries [shape_begin[k], shape_begin[k + 1]) of point k, with the
+      /// node's index among the cell's nodes (see cell_nodes()).
+      std::vector<unsigned int>   shape_begin;
+      std::vector<unsigned int>   shape_node;
+      std::vector<double>         shape_value;
+      std::vector<Tensor<1, dim>> shape_gradient;
 
       /// GIMP patches of the occupied cells (built as cells fill).
       GimpPatches<dim> patches;
