@@ -157,13 +157,15 @@ namespace scarp
 
 
     template <int dim>
-    void
+    unsigned int
     MpmTransfer<dim>::cell_nodes(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
       double                                               &h,
       Point<dim>                                           &x0,
       std::vector<types::global_dof_index>                 &dofs,
       std::vector<Point<dim>>                              &positions,
+      const types::global_dof_index                       *&dof_ptr,
+      const Point<dim>                                    *&node_ptr,
       const typename GimpPatches<dim>::Patch              *&patch)
     {
       // Cells are axis-aligned squares (cubes): the edge is the distance of
@@ -172,20 +174,22 @@ namespace scarp
       h  = cell->vertex(1)[0] - x0[0];
       if (parameters.shape_functions == ShapeFunctions::gimp)
         {
-          patch     = &patches.patch(cell);
-          dofs      = patch->node_dofs;
-          positions = patch->node_positions;
+          // The patch's own arrays: no copy per cell and sweep.
+          patch    = &patches.patch(cell);
+          dof_ptr  = patch->node_dofs.data();
+          node_ptr = patch->node_positions.data();
+          return patch->n_nodes();
         }
-      else
-        {
-          patch = nullptr;
-          dofs.resize(Q1Shape<dim>::n);
-          positions.resize(Q1Shape<dim>::n);
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-            for (unsigned int d = 0; d < dim; ++d)
-              positions[i][d] = x0[d] + h * Q1Shape<dim>::offset(i, d);
-        }
+      patch = nullptr;
+      dofs.resize(Q1Shape<dim>::n);
+      positions.resize(Q1Shape<dim>::n);
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          positions[i][d] = x0[d] + h * Q1Shape<dim>::offset(i, d);
+      dof_ptr  = dofs.data();
+      node_ptr = positions.data();
+      return Q1Shape<dim>::n;
     }
 
 
@@ -239,7 +243,10 @@ namespace scarp
           double                                  h;
           Point<dim>                              x0;
           const typename GimpPatches<dim>::Patch *patch;
-          cell_nodes(occupied.cell, h, x0, dofs, node, patch);
+          const types::global_dof_index          *dof_ptr;
+          const Point<dim>                       *node_ptr;
+          cell_nodes(
+            occupied.cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
           for (const auto &particle : occupied.particles)
             {
               const double *p  = particle.get_properties().data();
@@ -295,8 +302,10 @@ namespace scarp
           double      h;
           Point<dim>  x0;
           const typename GimpPatches<dim>::Patch *patch;
-          cell_nodes(cell, h, x0, dofs, node, patch);
-          const unsigned int n = dofs.size();
+          const types::global_dof_index          *dof_ptr;
+          const Point<dim>                       *node_ptr;
+          const unsigned int                      n =
+            cell_nodes(cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
           local_mass.reinit(n);
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -351,7 +360,7 @@ namespace scarp
                   const double       w  = shape_value[e] * m;
                   Tensor<1, dim>     vi = v;
                   if (apic)
-                    vi += C * (node[i] - xp);
+                    vi += C * (node_ptr[i] - xp);
                   const Tensor<1, dim> f =
                     -volume * stress_times<dim>(sigma, shape_gradient[e]) +
                     w * acceleration;
@@ -367,12 +376,12 @@ namespace scarp
             {
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  mass(dofs[i]) += local_mass(i);
+                  mass(dof_ptr[i]) += local_mass(i);
                   for (unsigned int d = 0; d < dim; ++d)
                     {
-                      momentum[d](dofs[i]) += local_momentum[d](i);
+                      momentum[d](dof_ptr[i]) += local_momentum[d](i);
                       if (!momentum_only)
-                        force[d](dofs[i]) += local_force[d](i);
+                        force[d](dof_ptr[i]) += local_force[d](i);
                     }
                 }
               continue;
@@ -575,8 +584,10 @@ namespace scarp
           double      h;
           Point<dim>  x0;
           const typename GimpPatches<dim>::Patch *patch;
-          cell_nodes(cell, h, x0, dofs, node, patch);
-          const unsigned int n = dofs.size();
+          const types::global_dof_index          *dof_ptr;
+          const Point<dim>                       *node_ptr;
+          const unsigned int                      n =
+            cell_nodes(cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
           v_new.resize(n);
           v_old.resize(n);
           v_stress.resize(n);
@@ -586,14 +597,15 @@ namespace scarp
           // part in gradients with the point's own interpolated velocity,
           // which keeps sum_i grad S_i = 0 and uniform motion strain-free.
           for (unsigned int i = 0; i < n; ++i)
-            empty[i] = mass(dofs[i]) == 0. &&
-                       !grid.constraints().is_constrained(dofs[i]);
+            empty[i] =
+              mass(dof_ptr[i]) == 0. &&
+              (patch || !grid.constraints().is_constrained(dof_ptr[i]));
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                v_new[i][d]    = velocity_new[d](dofs[i]);
-                v_old[i][d]    = velocity_old[d](dofs[i]);
-                v_stress[i][d] = stress_velocity[d](dofs[i]);
+                v_new[i][d]    = velocity_new[d](dof_ptr[i]);
+                v_old[i][d]    = velocity_old[d](dof_ptr[i]);
+                v_stress[i][d] = stress_velocity[d](dof_ptr[i]);
               }
           for (auto &b : batches)
             b.clear();

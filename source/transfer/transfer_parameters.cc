@@ -39,12 +39,13 @@ namespace scarp
         "Q1",
         Patterns::Selection("Q1|GIMP"),
         "Q1: the bilinear (trilinear) FE_Q(1) functions of the cell that "
-        "holds the point. GIMP: uniform generalized interpolation MPM, the "
-        "Q1 functions convolved with the point's domain, a box of "
-        "half-width h/(2 n) for n <Particles per cell> (taken from the "
-        "reference volume): smooth gradients, no cell-crossing noise, 3^dim "
-        "instead of 2^dim nodes per point. GIMP needs a uniform mesh "
-        "(no adaptive or initial refinement).");
+        "holds the point. GIMP: generalized interpolation MPM, the mean of "
+        "the (hanging-node constrained) Q1 basis over the point's domain, a "
+        "box of half-width min(h/(2 n), h_K/2) for n <Particles per cell> "
+        "(taken from the reference volume) and h_K the edge of the point's "
+        "cell: smooth gradients, no cell-crossing noise, 3^dim instead of "
+        "2^dim nodes per point. Works on uniform and refined meshes (across "
+        "coarse-fine interfaces); doc/refinement.md.");
       prm.leave_subsection();
     }
 

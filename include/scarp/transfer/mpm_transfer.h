@@ -156,14 +156,18 @@ namespace scarp
                         DamagePoints<dim>             *damage_points,
                         const Tensor<1, dim>          &gravity);
       /// The nodes the points of @p cell couple to: with Q1 the cell's own
-      /// 2^dim (constrained if hanging), with GIMP the unconstrained nodes
-      /// of its patch. Sets @p h and @p x0 (edge and lowest vertex).
-      void
+      /// 2^dim (constrained if hanging; stored in @p dofs, @p positions),
+      /// with GIMP the unconstrained nodes of its patch (the patch's arrays).
+      /// Sets @p h and @p x0 (edge and lowest vertex), @p dof_ptr and
+      /// @p node_ptr to the nodes' dofs and positions; returns their number.
+      unsigned int
       cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
                  double                                               &h,
                  Point<dim>                                           &x0,
                  std::vector<types::global_dof_index>                 &dofs,
                  std::vector<Point<dim>>                 &positions,
+                 const types::global_dof_index          *&dof_ptr,
+                 const Point<dim>                       *&node_ptr,
                  const typename GimpPatches<dim>::Patch *&patch);
       /// Weights and gradients of the point at reference location @p xi
       /// (Q1), or at @p x with reference volume @p V0 (GIMP).

@@ -27,7 +27,7 @@ namespace scarp
     enum class ShapeFunctions
     {
       q1,   ///< FE_Q(1) of the cell that holds the point
-      gimp, ///< uniform GIMP on the 3^dim-node patch (uniform meshes only)
+      gimp, ///< GIMP on any mesh (transfer/gimp_patches.h)
     };
 
     /**
