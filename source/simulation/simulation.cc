@@ -774,9 +774,18 @@ namespace scarp
     void
     Simulation<dim>::nonlocal_damage_step(const Stage &stage)
     {
-      if (!averager || !stage.damage)
+      const bool gather_precursors = precursors_due(step);
+      if (!averager || !(stage.damage || gather_precursors))
         return;
       TimerOutput::Scope scope(timer, "non-local damage");
+      // Without damage (gravity loading) no point is a receiver; for the
+      // refinement criterion every point that is not fully damaged is.
+      if (!stage.damage)
+        for (std::size_t k = 0; k < damage_points.receiver.size(); ++k)
+          damage_points.receiver[k] =
+            materials[static_cast<unsigned int>(
+                        damage_points.properties[k][layout.material_id])]
+              ->damage(damage_points.properties[k] + layout.state) < 1.;
       // This rank's region: the bounding box of its locally owned cells.
       // (GridTools::compute_mesh_predicate_bounding_box() at refinement
       // level 1 reads past the last level of an unrefined mesh and
@@ -826,8 +835,6 @@ namespace scarp
       // Points whose driver approaches their damage threshold seed the
       // refinement pass at the end of this step (before the update: the
       // threshold the driver is compared with is the one it had to pass).
-      const bool gather_precursors =
-        refinement_due() && grid.refinement_driver_fraction > 0;
       for (std::size_t k = 0; k < damage_points.position.size(); ++k)
         if (damage_points.receiver[k])
           {
@@ -838,7 +845,8 @@ namespace scarp
                 nonlocal_driver[k] > grid.refinement_driver_fraction *
                                        m.damage_threshold(p + layout.state))
               precursor_ids.push_back(damage_points.id[k]);
-            m.update_damage(nonlocal_driver[k], dt, p + layout.state);
+            if (stage.damage)
+              m.update_damage(nonlocal_driver[k], dt, p + layout.state);
           }
       if (gather_precursors)
         std::sort(precursor_ids.begin(), precursor_ids.end());
@@ -925,11 +933,17 @@ namespace scarp
       transfer::StepReport report;
       {
         TimerOutput::Scope scope(timer, "MPM step");
-        report =
-          mpm->step(dt,
-                    gravity,
-                    stage.damping,
-                    (any_damage && stage.damage) ? &damage_points : nullptr);
+        // Points of damage materials are gathered for the non-local step:
+        // in damage stages every step; in the others (gravity loading) in
+        // the step before a refinement check, so that cells refine where
+        // the driver approaches the threshold while the loading is still
+        // damped (their transients die out before the collapse starts).
+        const bool gather =
+          any_damage && (stage.damage || precursors_due(step + 1));
+        report = mpm->step(dt,
+                           gravity,
+                           stage.damping,
+                           gather ? &damage_points : nullptr);
         report.reduce(communicator);
       }
       internal_work += report.internal_work;
@@ -979,6 +993,15 @@ namespace scarp
     Simulation<dim>::refinement_due() const
     {
       return grid.adaptive_refinement && step % grid.refinement_interval == 0;
+    }
+
+
+    template <int dim>
+    bool
+    Simulation<dim>::precursors_due(const unsigned int s) const
+    {
+      return grid.adaptive_refinement && grid.refinement_driver_fraction > 0 &&
+             s % grid.refinement_interval == 0;
     }
 
 

@@ -209,6 +209,10 @@ namespace scarp
       /// True when a refinement pass is due at the end of this step.
       bool
       refinement_due() const;
+      /// True when the non-local driver of step @p s feeds the criterion
+      /// "driver near the threshold" (the step before a refinement check).
+      bool
+      precursors_due(const unsigned int s) const;
       /// Material points of the cliff bodies, gathered on rank 0.
       std::vector<postprocess::CliffDiagnostics::Particle>
       gather_cliff_points() const;
