@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -301,17 +302,7 @@ namespace scarp
         ++reuse_count;
 
       averages.resize(n);
-      // Dispatch once on the weight so that the pair loop inlines it.
-      if (weight.type() == WeightType::bell)
-        evaluate([this](const double r2) { return weight.bell(r2); },
-                 values,
-                 is_receiver,
-                 averages);
-      else
-        evaluate([this](const double r2) { return weight.gaussian(r2); },
-                 values,
-                 is_receiver,
-                 averages);
+      evaluate(values, is_receiver, averages);
     }
 
 
@@ -523,22 +514,23 @@ namespace scarp
       const std::size_t n_ghost  = ghost_ids.size();
       const unsigned    n_values = doubles_per_ghost<dim>;
       source_positions.resize(n_local + n_ghost);
-      source_volumes.resize(n_local + n_ghost);
-      source_weighted_values.resize(n_local + n_ghost);
+      source_data.resize(n_local + n_ghost);
 
       for (std::size_t i = 0; i < n_local; ++i)
         {
-          const unsigned int s      = slot_of_local[i];
-          source_positions[s]       = positions[i];
-          source_volumes[s]         = volume(i);
-          source_weighted_values[s] = volume(i) * values[i];
+          const unsigned int s = slot_of_local[i];
+          source_positions[s]  = positions[i];
+          auto &data           = source_data[s];
+          for (unsigned int d = 0; d < dim; ++d)
+            data[d] = positions[i][d];
+          data[dim]     = volume(i);
+          data[dim + 1] = volume(i) * values[i];
         }
 
       if (destinations.empty() && sources.empty())
         return;
 
-      std::vector<MPI_Request> requests;
-      requests.reserve(sources.size() + destinations.size());
+      requests.clear();
       receive_buffer.resize(n_values * n_ghost);
       std::size_t offset = 0;
       for (unsigned int k = 0; k < sources.size(); ++k)
@@ -581,12 +573,13 @@ namespace scarp
       const double *b = receive_buffer.data();
       for (std::size_t g = 0; g < n_ghost; ++g)
         {
-          const unsigned int s = slot_of_ghost[g];
+          const unsigned int s    = slot_of_ghost[g];
+          auto              &data = source_data[s];
           for (unsigned int d = 0; d < dim; ++d)
-            source_positions[s][d] = *b++;
-          source_volumes[s] = b[0];
+            data[d] = source_positions[s][d] = *b++;
+          data[dim] = b[0];
           // The same product as on the owner, so bit-identical.
-          source_weighted_values[s] = b[0] * b[1];
+          data[dim + 1] = b[0] * b[1];
           b += 2;
         }
     }
@@ -602,8 +595,11 @@ namespace scarp
       const double      reach    = weight.cutoff_radius() + skin;
       const double      reach2   = reach * reach;
 
-      row_start.assign(n_local + 1, 0);
-      neighbours.clear();
+      group_slots.clear();
+      group_members.clear();
+      group_start.assign(1, 0);
+      group_neighbours.clear();
+      list_length.assign(n_local, 0);
       if (n_source == 0)
         return;
 
@@ -656,7 +652,7 @@ namespace scarp
         return c;
       };
 
-      // Counting sort of the sources into bins, in slot order within a bin.
+      // Counting sort of the sources into bins.
       std::vector<std::size_t>  bin_of_source(n_source);
       std::vector<std::size_t>  bin_start(n_total + 1, 0);
       std::vector<unsigned int> bin_items(n_source);
@@ -676,13 +672,58 @@ namespace scarp
           bin_items[fill[bin_of_source[s]]++] = s;
       }
 
-      neighbours.reserve(n_local * 64);
-      std::vector<unsigned int> row;
-      for (std::size_t i = 0; i < n_local; ++i)
+      // Group the receivers: Morton (Z) order of their positions on a
+      // 2^(63/dim) grid over the sources' box, then consecutive runs of
+      // group_size. Close members share most of their neighbours, so the
+      // union each group sums over is little longer than one list. Ties
+      // (same grid cell) go by local index: the order is deterministic.
+      constexpr unsigned int  bits = 63 / dim;
+      std::array<double, dim> inverse_key_size;
+      for (unsigned int d = 0; d < dim; ++d)
+        inverse_key_size[d] =
+          hi[d] > lo[d] ? ((std::uint64_t(1) << bits) - 1) / (hi[d] - lo[d])
+                        : 0.;
+      std::vector<std::pair<std::uint64_t, unsigned int>> order;
+      for (unsigned int i = 0; i < n_local; ++i)
+        if (is_receiver[i])
+          {
+            const Point<dim> &x = source_positions[slot_of_local[i]];
+            std::array<std::uint64_t, dim> c;
+            for (unsigned int d = 0; d < dim; ++d)
+              c[d] = static_cast<std::uint64_t>(
+                std::max(0., (x[d] - lo[d]) * inverse_key_size[d]));
+            std::uint64_t key = 0;
+            for (unsigned int b = bits; b-- > 0;)
+              for (unsigned int d = 0; d < dim; ++d)
+                key = (key << 1) | ((c[d] >> b) & 1);
+            order.emplace_back(key, i);
+          }
+      std::sort(order.begin(), order.end());
+
+      const std::size_t n_groups = (order.size() + group_size - 1) / group_size;
+      group_slots.resize(n_groups * group_size);
+      group_members.assign(n_groups * group_size,
+                           numbers::invalid_unsigned_int);
+      group_start.reserve(n_groups + 1);
+      // The last group that listed each source, to form the unions.
+      std::vector<std::size_t> listed_in(
+        n_source, std::numeric_limits<std::size_t>::max());
+      for (std::size_t g = 0; g < n_groups; ++g)
         {
-          if (is_receiver[i])
+          for (unsigned int l = 0; l < group_size; ++l)
             {
-              const unsigned int           s  = slot_of_local[i];
+              const std::size_t k = g * group_size + l;
+              if (k >= order.size())
+                {
+                  // Unused lanes repeat the first member; never read out.
+                  group_slots[k] = group_slots[g * group_size];
+                  continue;
+                }
+              const unsigned int i = order[k].second;
+              const unsigned int s = slot_of_local[i];
+              group_members[k]     = i;
+              group_slots[k]       = s;
+
               const Point<dim>            &xp = source_positions[s];
               const auto                   c  = bin_coordinates(xp);
               std::array<std::size_t, dim> from, to;
@@ -691,75 +732,316 @@ namespace scarp
                   from[d] = c[d] > 0 ? c[d] - 1 : 0;
                   to[d]   = std::min(c[d] + 1, n_bins[d] - 1);
                 }
-              row.clear();
               // Loop over the (up to) 3^dim adjacent bins.
-              std::array<std::size_t, dim> k = from;
+              std::array<std::size_t, dim> b_k = from;
               while (true)
                 {
                   std::size_t b = 0;
                   for (unsigned int d = 0; d < dim; ++d)
-                    b += k[d] * stride[d];
+                    b += b_k[d] * stride[d];
                   for (std::size_t j = bin_start[b]; j < bin_start[b + 1]; ++j)
                     {
                       const unsigned int q = bin_items[j];
                       if (squared_distance(xp, source_positions[q]) <= reach2)
-                        row.push_back(q);
+                        {
+                          ++list_length[i];
+                          if (listed_in[q] != g)
+                            {
+                              listed_in[q] = g;
+                              group_neighbours.push_back(q);
+                            }
+                        }
                     }
                   unsigned int d = 0;
                   for (; d < dim; ++d)
                     {
-                      if (k[d] < to[d])
+                      if (b_k[d] < to[d])
                         {
-                          ++k[d];
+                          ++b_k[d];
                           break;
                         }
-                      k[d] = from[d];
+                      b_k[d] = from[d];
                     }
                   if (d == dim)
                     break;
                 }
-              // Slot order is id order: the sum is independent of the
-              // partition.
-              std::sort(row.begin(), row.end());
-              neighbours.insert(neighbours.end(), row.begin(), row.end());
             }
-          row_start[i + 1] = neighbours.size();
+          // Slot order is id order: each lane sums in id order, which
+          // makes the result independent of the partition.
+          std::sort(group_neighbours.begin() + group_start.back(),
+                    group_neighbours.end());
+          group_start.push_back(group_neighbours.size());
         }
     }
 
 
+    // No fused multiply-add in the sums, even where the instruction set has
+    // one (avx512f implies fma in GCC): it would round differently from the
+    // plain loop, and from the same loop without FMA on another rank.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
+#endif
+    namespace
+    {
+      // Vectors of 2, 4 and 8 doubles: SSE2 (or NEON), AVX2 and AVX-512
+      // registers.
+      using v2d = double __attribute__((vector_size(16)));
+      using v4d = double __attribute__((vector_size(32)));
+      using v8d = double __attribute__((vector_size(64)));
+
+      // The bell of WeightFunction for a vector of squared distances, with
+      // the same operations, so bit-identical to the scalar one.
+      struct BellWeights
+      {
+        // As in WeightFunction: 1 / R^2 and R^2.
+        double inverse_cutoff_squared, cutoff_squared;
+
+        template <typename VD>
+        __attribute__((always_inline)) inline VD
+        operator()(const VD r2) const
+        {
+          using VI    = decltype(r2 < r2);
+          const VD t  = 1. - r2 * inverse_cutoff_squared;
+          const VD tt = t * t;
+          return (VD)((VI)tt & (r2 < cutoff_squared));
+        }
+      };
+
+      /**
+       * The sums of groups of G receivers, G / lanes vectors VD of lanes
+       * doubles. Lane l of group g is the receiver at slot slots[G g + l];
+       * it adds w V_q Y_q and w V_q of every source q of the group's list,
+       * one term at a time in list (= id) order, exactly as a loop over its
+       * own list would: the other sources of the union are beyond the
+       * cut-off now (each point moved less than skin/2 since the build) and
+       * add +-0, which leaves a sum unchanged.
+       *
+       * The bell is evaluated in the vectors. The Gaussian's std::exp is
+       * not vectorised (a vector exp rounds differently): its weights are
+       * computed in a separate scalar pass over a buffer, since a call
+       * inside the vector loop would spill all live vectors.
+       *
+       * Written as one inline body so that it is compiled for each
+       * instruction set, all without FMA: a fused multiply-add rounds
+       * differently from the plain loop.
+       */
+      template <int dim, typename VD, unsigned int G>
+      __attribute__((always_inline)) inline void
+      group_sums(const WeightFunction              &weight,
+                 const std::array<double, dim + 2> *data,
+                 const unsigned int                *slots,
+                 const std::size_t                 *start,
+                 const unsigned int                *list,
+                 const unsigned char               *active,
+                 const std::size_t                  n_groups,
+                 std::vector<double>               &buffer,
+                 std::vector<unsigned int>         &inside,
+                 double                            *numerators,
+                 double                            *denominators,
+                 std::int64_t                      *interacting)
+      {
+        using VI                    = decltype(VD() < VD());
+        constexpr unsigned int L    = sizeof(VD) / sizeof(double);
+        constexpr unsigned int V    = G / L;
+        const bool             bell = weight.type() == WeightType::bell;
+        const double      R2 = weight.cutoff_radius() * weight.cutoff_radius();
+        const BellWeights bell_weights{1. / R2, R2};
+        for (std::size_t g = 0; g < n_groups; ++g)
+          {
+            if (!active[g])
+              continue;
+            VD x[V][dim];
+            for (unsigned int v = 0; v < V; ++v)
+              for (unsigned int l = 0; l < L; ++l)
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[v][d][l] = data[slots[G * g + L * v + l]][d];
+            const auto squared_distances = [&x](const double      *q,
+                                                const unsigned int v) {
+              // As squared_distance(x_p, x_q): 0 + dx^2 is dx^2.
+              VD dx = x[v][0] - q[0];
+              VD r2 = dx * dx;
+              for (unsigned int d = 1; d < dim; ++d)
+                {
+                  dx = x[v][d] - q[d];
+                  r2 += dx * dx;
+                }
+              return r2;
+            };
+
+            const std::size_t begin = start[g], end = start[g + 1];
+            if (!bell)
+              {
+                // Gaussian weights of the whole group, scalar.
+                // (memcpy: the buffer is not aligned for a VD.)
+                buffer.resize(G * (end - begin));
+                double *b = buffer.data();
+                for (std::size_t j = begin; j < end; ++j)
+                  for (unsigned int v = 0; v < V; ++v, b += L)
+                    {
+                      const VD r2 = squared_distances(data[list[j]].data(), v);
+                      std::memcpy(b, &r2, sizeof(VD));
+                    }
+                // List those within the cut-off (R2, as in WeightFunction)
+                // and zero the others without a branch, then take the exps
+                // of the listed: no mispredicted branch per lane.
+                std::size_t n_inside = 0;
+                inside.resize(buffer.size());
+                for (std::size_t k = 0; k < buffer.size(); ++k)
+                  {
+                    const bool in    = buffer[k] < R2;
+                    inside[n_inside] = k;
+                    n_inside += in;
+                    buffer[k] = in ? buffer[k] : 0.;
+                  }
+                for (std::size_t k = 0; k < n_inside; ++k)
+                  buffer[inside[k]] = weight.gaussian(buffer[inside[k]]);
+              }
+            const double *b = buffer.data();
+
+            VD num[V], den[V];
+            VI count[V];
+            for (unsigned int v = 0; v < V; ++v)
+              {
+                num[v]   = VD{};
+                den[v]   = VD{};
+                count[v] = VI{};
+              }
+            for (std::size_t j = begin; j < end; ++j)
+              {
+                const double *q = data[list[j]].data();
+                for (unsigned int v = 0; v < V; ++v)
+                  {
+                    VD w;
+                    if (bell)
+                      w = bell_weights(squared_distances(q, v));
+                    else
+                      {
+                        std::memcpy(&w, b, sizeof(VD));
+                        b += L;
+                      }
+                    num[v] += w * q[dim + 1];
+                    den[v] += w * q[dim];
+                    count[v] -= (w > 0.); // true is -1
+                  }
+              }
+            for (unsigned int v = 0; v < V; ++v)
+              for (unsigned int l = 0; l < L; ++l)
+                {
+                  const std::size_t k = G * g + L * v + l;
+                  numerators[k]       = num[v][l];
+                  denominators[k]     = den[v][l];
+                  interacting[k]      = count[v][l];
+                }
+          }
+      }
+
+#define SCARP_NONLOCAL_GROUP_SUMS(name, attributes, VD)                 \
+  template <int dim, unsigned int G>                                    \
+  attributes void name(const WeightFunction              &weight,       \
+                       const std::array<double, dim + 2> *data,         \
+                       const unsigned int                *slots,        \
+                       const std::size_t                 *start,        \
+                       const unsigned int                *list,         \
+                       const unsigned char               *active,       \
+                       const std::size_t                  n_groups,     \
+                       std::vector<double>               &buffer,       \
+                       std::vector<unsigned int>         &inside,       \
+                       double                            *numerators,   \
+                       double                            *denominators, \
+                       std::int64_t                      *interacting)  \
+  {                                                                     \
+    group_sums<dim, VD, G>(weight,                                      \
+                           data,                                        \
+                           slots,                                       \
+                           start,                                       \
+                           list,                                        \
+                           active,                                      \
+                           n_groups,                                    \
+                           buffer,                                      \
+                           inside,                                      \
+                           numerators,                                  \
+                           denominators,                                \
+                           interacting);                                \
+  }
+
+      SCARP_NONLOCAL_GROUP_SUMS(group_sums_default, , v2d)
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SCARP_NONLOCAL_X86
+      // The same for AVX2 and AVX-512 (neither with FMA), chosen at run time.
+      SCARP_NONLOCAL_GROUP_SUMS(group_sums_avx2,
+                                __attribute__((target("avx2"))),
+                                v4d)
+      SCARP_NONLOCAL_GROUP_SUMS(group_sums_avx512,
+                                __attribute__((target("avx512f"))),
+                                v8d)
+#endif
+#undef SCARP_NONLOCAL_GROUP_SUMS
+    } // namespace
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+
     template <int dim>
-    template <typename Weight>
     void
-    NonlocalAverager<dim>::evaluate(const Weight              &w,
-                                    const std::vector<double> &values,
+    NonlocalAverager<dim>::evaluate(const std::vector<double> &values,
                                     const std::vector<bool>   &is_receiver,
                                     std::vector<double>       &averages)
     {
-      const std::size_t n_local = slot_of_local.size();
-      std::size_t       listed = 0, interacting = 0;
+      const std::size_t n_local  = slot_of_local.size();
+      const std::size_t n_groups = group_start.size() - 1;
+
+      std::size_t listed = 0;
       for (std::size_t i = 0; i < n_local; ++i)
+        if (is_receiver[i])
+          listed += list_length[i];
+        else
+          averages[i] = values[i];
+
+      // Groups of former receivers only are skipped.
+      group_active.assign(n_groups, 0);
+      for (std::size_t k = 0; k < group_members.size(); ++k)
+        if (group_members[k] != numbers::invalid_unsigned_int &&
+            is_receiver[group_members[k]])
+          group_active[k / group_size] = 1;
+      group_numerators.resize(group_members.size());
+      group_denominators.resize(group_members.size());
+      group_interacting.resize(group_members.size());
+
+      auto sums = &group_sums_default<dim, group_size>;
+#ifdef SCARP_NONLOCAL_X86
+      if (__builtin_cpu_supports("avx512f"))
+        sums = &group_sums_avx512<dim, group_size>;
+      else if (__builtin_cpu_supports("avx2"))
+        sums = &group_sums_avx2<dim, group_size>;
+#endif
+      sums(weight,
+           source_data.data(),
+           group_slots.data(),
+           group_start.data(),
+           group_neighbours.data(),
+           group_active.data(),
+           n_groups,
+           weight_buffer,
+           inside_buffer,
+           group_numerators.data(),
+           group_denominators.data(),
+           group_interacting.data());
+
+      std::size_t interacting = 0;
+      for (std::size_t k = 0; k < group_members.size(); ++k)
         {
-          if (!is_receiver[i])
-            {
-              averages[i] = values[i];
-              continue;
-            }
-          const Point<dim> xp        = source_positions[slot_of_local[i]];
-          double           numerator = 0., denominator = 0.;
-          for (std::size_t j = row_start[i]; j < row_start[i + 1]; ++j)
-            {
-              const unsigned int q = neighbours[j];
-              const double wq = w(squared_distance(xp, source_positions[q]));
-              numerator += wq * source_weighted_values[q];
-              denominator += wq * source_volumes[q];
-              interacting += (wq > 0.);
-            }
-          listed += row_start[i + 1] - row_start[i];
+          const unsigned int i = group_members[k];
+          if (i == numbers::invalid_unsigned_int || !is_receiver[i])
+            continue;
+          const double denominator = group_denominators[k];
+          interacting += group_interacting[k];
           // The point itself has weight 1; only zero volumes (or points
           // left out of the sums) can leave the denominator at zero, and
           // then there is nothing to average.
-          averages[i] = denominator > 0. ? numerator / denominator : values[i];
+          averages[i] =
+            denominator > 0. ? group_numerators[k] / denominator : values[i];
         }
       listed_pair_count      = listed;
       interacting_pair_count = interacting;

@@ -1,11 +1,19 @@
-// Cost of the non-local average for the chalk length scale: a 2D block of
-// ~30k points at spacing 0.125 m, l_c = 0.18 m. Prints the number of points,
-// neighbours per point, and the time per average with list reuse (small
-// moves, new values every call) and without (lists rebuilt every call), for
-// both weights. Also times a neighbour search with deal.II's Boost R-tree
-// (pack_rtree) against the cell list, the reason the cell list is used.
-// Prints figures for doc/nonlocal.md; asserts nothing. Runs on any number of
-// ranks (slabs in x).
+// Cost of the non-local average for the chalk length scale l_c = 0.18 m
+// (bell cut-off 0.476 m), with ~30k points per scene: 2D at point spacings
+// 0.0625 m (~180 neighbours per point: 0.125 m cells with 2x2 points) and
+// 0.03125 m (~700), bell and Gaussian, every fifth point left out of the sums
+// (the second compute()), and 3D at 0.125 m (~230). For each scene, n calls
+// with small moves (< skin/2, lists reused) and new values are timed, for
+// NonlocalAverager::compute() ("fast") and for the straightforward sums of
+// test_tools.h ("reference": one receiver at a time over its list sorted by
+// id, as the library did before), on the same input; the largest relative
+// difference of the two is printed. The first build of the lists is timed
+// on its own. Also times a neighbour search with deal.II's Boost R-tree
+// (pack_rtree), the reason the cell list is used. Prints figures for
+// doc/nonlocal.md; asserts nothing. Runs on any number of ranks (slabs in x;
+// the reference sums each rank's own receivers over all points).
+//
+// Usage: test_nonlocal_benchmark [calls per scene, default 20]
 
 #include <deal.II/base/mpi.h>
 
@@ -29,6 +37,134 @@ namespace
                                          start)
       .count();
   }
+
+
+  template <int dim>
+  void
+  run_scene(const WeightType   type,
+            const unsigned int n,
+            const double       h,
+            const bool         exclude,
+            const unsigned int n_calls)
+  {
+    const MPI_Comm     comm    = MPI_COMM_WORLD;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    const double       l_c     = 0.18;
+    const double       length  = (n - 1) * h;
+
+    PointSet<dim> all = make_lattice<dim>(n, h);
+    for (std::size_t i = 0; i < all.size(); ++i)
+      {
+        all.volumes[i] *= 1. + 0.2 * std::sin(0.3 * i);
+        all.receivers[i] = (i % 11 != 5);
+      }
+    if (exclude)
+      for (std::size_t i = 0; i < all.size(); ++i)
+        all.sources.push_back(i % 5 != 1);
+    std::vector<unsigned int> own;
+    for (unsigned int i = 0; i < all.size(); ++i)
+      if (std::min<unsigned int>(n_ranks - 1,
+                                 all.positions[i][0] / length * n_ranks) ==
+          rank)
+        own.push_back(i);
+    Point<dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] = -0.5 * h;
+        hi[d] = length + 0.5 * h;
+      }
+    lo[0] = length * rank / n_ranks - 0.5 * h;
+    hi[0] = length * (rank + 1) / n_ranks + 0.5 * h;
+    const std::vector<BoundingBox<dim>> boxes = {
+      BoundingBox<dim>(std::make_pair(lo, hi))};
+    const std::vector<Point<dim>> initial = all.positions;
+
+    NonlocalAverager<dim> averager(comm);
+    averager.reinit(type, l_c, 0.1);
+    const double          skin = averager.skin_distance();
+    ReferenceAverage<dim> reference(averager.get_weight_function(),
+                                    averager.cutoff_radius() + skin);
+
+    // Call 0 builds; the others move every point by less than skin/2.
+    const auto set_call = [&](const unsigned int call) {
+      for (std::size_t i = 0; i < all.size(); ++i)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            all.positions[i][d] =
+              initial[i][d] + (call == 0 ? 0.
+                                         : 0.45 * skin / std::sqrt(dim) *
+                                             std::sin(1.3 * i + call + d));
+          all.values[i] = 1. + std::sin(0.01 * all.ids[i] + call);
+          if (exclude && !all.sources[i])
+            all.values[i] = 0.;
+        }
+    };
+    PointSet<dim> mine;
+    const auto    set_mine = [&]() {
+      mine = PointSet<dim>();
+      for (const auto i : own)
+        {
+          mine.push_back(all.positions[i],
+                         all.volumes[i],
+                         all.values[i],
+                         all.receivers[i],
+                         all.ids[i]);
+          if (exclude)
+            mine.sources.push_back(all.sources[i]);
+        }
+    };
+
+    std::vector<double> ybar;
+    double              fast_time = 0., reference_time = 0., build_time = 0.;
+    double              difference = 0.;
+    for (unsigned int call = 0; call <= n_calls; ++call)
+      {
+        set_call(call);
+        set_mine();
+        MPI_Barrier(comm);
+        auto start = std::chrono::steady_clock::now();
+        ybar       = mine.average(averager, boxes);
+        (call == 0 ? build_time : fast_time) += seconds_since(start);
+
+        if (call == 0)
+          reference.build(all, own); // lists of the same pairs, not timed
+        start               = std::chrono::steady_clock::now();
+        const auto expected = reference.average(all);
+        reference_time += (call > 0 ? seconds_since(start) : 0.);
+        difference =
+          std::max(difference, max_relative_difference(ybar, expected));
+      }
+    fast_time      = Utilities::MPI::max(fast_time, comm) / n_calls;
+    reference_time = Utilities::MPI::max(reference_time, comm) / n_calls;
+    build_time     = Utilities::MPI::max(build_time, comm);
+    difference     = Utilities::MPI::max(difference, comm);
+    const double n_receivers = Utilities::MPI::sum(
+      double(std::count(mine.receivers.begin(), mine.receivers.end(), true)),
+      comm);
+    const double interacting =
+      double(Utilities::MPI::sum(averager.n_interacting_pairs(), comm));
+    const double listed =
+      double(Utilities::MPI::sum(averager.n_listed_pairs(), comm));
+    const std::size_t ghosts =
+      Utilities::MPI::sum(averager.n_ghost_points(), comm);
+    if (rank == 0)
+      std::cout << std::fixed << dim << "D " << std::left << std::setw(8)
+                << to_string(type) << std::right << std::setw(8)
+                << std::setprecision(5) << h
+                << (exclude ? " 1/5 out" : "        ") << std::setw(7)
+                << all.size() << std::setw(7) << std::setprecision(1)
+                << interacting / n_receivers << std::setw(7)
+                << listed / n_receivers << std::setw(7) << ghosts
+                << std::setw(9) << std::setprecision(2) << 1e3 * reference_time
+                << std::setw(8) << 1e9 * reference_time / interacting * n_ranks
+                << std::setw(9) << 1e3 * fast_time << std::setw(8)
+                << 1e9 * fast_time / interacting * n_ranks << std::setw(7)
+                << std::setprecision(1) << reference_time / fast_time
+                << std::setw(9) << std::setprecision(1) << 1e3 * build_time
+                << std::setw(10) << std::scientific << std::setprecision(1)
+                << difference << std::endl;
+  }
 } // namespace
 
 int
@@ -37,88 +173,39 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const unsigned int n_ranks            = Utilities::MPI::n_mpi_processes(comm);
-  const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-  constexpr int      dim  = 2;
+  const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+  const unsigned int n_calls = argc > 1 ? std::stoi(argv[1]) : 20;
 
-  const unsigned int n       = 173; // 173^2 = 29929 points
-  const double       h       = 0.125;
-  const double       l_c     = 0.18;
-  const double       length  = (n - 1) * h;
-  const unsigned int n_calls = argc > 1 ? std::stoi(argv[1]) : 50;
+  if (rank == 0)
+    std::cout
+      << "Non-local average benchmark: l_c 0.18, skin 0.1 cut-off, " << n_ranks
+      << " rank(s), " << n_calls << " calls per scene (lists reused)\n"
+      << "   weight   spacing   out points  neigh listed ghosts"
+      << "   ref ms  ref ns   new ms  new ns  x  build ms  max rel diff\n"
+      << "  (neigh: sources within the cut-off per receiver, self "
+         "included; listed: within cut-off + skin;\n"
+      << "   ms per call, ns per neighbour pair and rank; x: speed-up; "
+         "build: first call, lists built)\n";
+  run_scene<2>(WeightType::bell, 173, 0.0625, false, n_calls);
+  run_scene<2>(WeightType::bell, 173, 0.0625, true, n_calls);
+  run_scene<2>(WeightType::gaussian, 173, 0.0625, false, n_calls);
+  run_scene<2>(WeightType::bell, 173, 0.03125, false, n_calls);
+  run_scene<3>(WeightType::bell, 31, 0.125, false, n_calls);
+  run_scene<3>(WeightType::gaussian, 31, 0.125, false, n_calls);
 
-  const PointSet<dim> all = make_lattice<dim>(n, h);
-  PointSet<dim>       points;
+  // The same search with deal.II's R-tree, to compare with the cell list,
+  // on a 173 x 173 lattice at 0.125 m (rank 0's slab).
+  const unsigned int n      = 173;
+  const double       h      = 0.125;
+  const double       l_c    = 0.18;
+  const double       length = (n - 1) * h;
+  const PointSet<2>  all    = make_lattice<2>(n, h);
+  PointSet<2>        points;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (std::min<unsigned int>(n_ranks - 1,
                                all.positions[i][0] / length * n_ranks) == rank)
-      points.push_back(
-        all.positions[i], all.volumes[i], std::sin(0.01 * i), true, all.ids[i]);
-  Point<dim> lo, hi;
-  lo[0] = length * rank / n_ranks - 0.5 * h;
-  hi[0] = length * (rank + 1) / n_ranks + 0.5 * h;
-  lo[1] = -0.5 * h;
-  hi[1] = length + 0.5 * h;
-  const std::vector<BoundingBox<dim>> boxes = {
-    BoundingBox<dim>(std::make_pair(lo, hi))};
-  const std::vector<Point<dim>> initial = points.positions;
-
-  if (rank == 0)
-    std::cout << "Non-local average benchmark: " << all.size()
-              << " points in 2D, spacing " << h << ", l_c " << l_c << ", "
-              << n_ranks << " rank(s), " << n_calls << " calls per figure\n";
-
-  std::vector<double> ybar;
-  for (const auto type : {WeightType::bell, WeightType::gaussian})
-    for (const bool reuse : {true, false})
-      {
-        NonlocalAverager<dim> averager(comm);
-        averager.reinit(type, l_c, 0.1);
-        points.average(averager, boxes); // first build, not timed
-        MPI_Barrier(comm);
-        const auto start = std::chrono::steady_clock::now();
-        for (unsigned int call = 0; call < n_calls; ++call)
-          {
-            // Small moves (0.2 skin at most from the start) and new values,
-            // as in a time step.
-            const double amplitude =
-              0.2 * averager.skin_distance() * std::sin(0.1 * call);
-            for (std::size_t i = 0; i < points.size(); ++i)
-              {
-                points.positions[i][0] = initial[i][0] + amplitude;
-                points.values[i]       = std::sin(0.01 * points.ids[i] + call);
-              }
-            if (!reuse)
-              averager.invalidate_neighbour_lists();
-            averager.compute(boxes,
-                             points.positions,
-                             points.volumes,
-                             points.values,
-                             points.receivers,
-                             points.ids,
-                             ybar);
-          }
-        const double time =
-          Utilities::MPI::max(seconds_since(start), comm) / n_calls;
-        const double listed =
-          double(Utilities::MPI::sum(averager.n_listed_pairs(), comm)) /
-          all.size();
-        const double interacting =
-          double(Utilities::MPI::sum(averager.n_interacting_pairs(), comm)) /
-          all.size();
-        const std::size_t ghosts =
-          Utilities::MPI::sum(averager.n_ghost_points(), comm);
-        if (rank == 0)
-          std::cout << std::left << std::setw(9) << to_string(type)
-                    << (reuse ? "reuse   " : "rebuild ") << "neighbours/point "
-                    << std::setprecision(4) << interacting << " (listed "
-                    << listed << "), ghosts " << ghosts << ", rebuilds "
-                    << averager.n_rebuilds() << ", reuses "
-                    << averager.n_reuses() << ", time per average "
-                    << std::setprecision(3) << 1e3 * time << " ms" << std::endl;
-      }
-
-  // The same search with deal.II's R-tree, to compare with the cell list
-  // (whose cost is "rebuild" minus "reuse" above), on rank 0's points only.
+      points.push_back(all.positions[i], 1., 0., true, all.ids[i]);
+  constexpr int dim = 2;
   if (rank == 0)
     {
       namespace bgi        = boost::geometry::index;

@@ -10,6 +10,7 @@
 
 #include <scarp/nonlocal/weight_function.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +36,14 @@ namespace scarp
      * compute() for the conditions. Weights are always evaluated from the
      * current positions, and ghost positions, volumes and values are
      * exchanged on every call.
+     *
+     * The receivers are summed in groups of group_size spatially close
+     * points (Morton order), one SIMD lane per receiver, over the union of
+     * their lists: each lane still adds its terms one by one in id order,
+     * and the sources of the union that are not in its own list are beyond
+     * the cut-off and add exactly 0, so every average is bit-identical to
+     * the straightforward one-receiver-at-a-time sum (doc/nonlocal.md,
+     * "Speed").
      *
      * compute() is collective over the communicator unless the weight is
      * WeightType::local, in which case it neither searches nor communicates.
@@ -247,13 +256,15 @@ namespace scarp
       void
       build_neighbour_lists(const std::vector<bool> &is_receiver);
 
-      /// The weighted sums, with the weight @p w inlined.
-      template <typename Weight>
+      /// The weighted sums and the averages.
       void
-      evaluate(const Weight              &w,
-               const std::vector<double> &values,
+      evaluate(const std::vector<double> &values,
                const std::vector<bool>   &is_receiver,
                std::vector<double>       &averages);
+
+      /// Receivers summed together, one SIMD lane each (see the class
+      /// documentation).
+      static constexpr unsigned int group_size = 8;
 
       MPI_Comm       communicator;
       unsigned int   n_ranks;
@@ -289,15 +300,29 @@ namespace scarp
       std::vector<unsigned int> slot_of_local;
       std::vector<unsigned int> slot_of_ghost;
       std::vector<Point<dim>>   source_positions;
-      std::vector<double>       source_volumes;
-      std::vector<double>       source_weighted_values;
+      /// Per slot, what the sums read: position, volume V, V Y (one cache
+      /// line in 2D).
+      std::vector<std::array<double, dim + 2>> source_data;
 
-      // Neighbour lists in compressed rows, one row per local point (empty
-      // for points that were no receiver at the build).
-      std::vector<std::size_t>  row_start;
-      std::vector<unsigned int> neighbours;
+      // Receivers in groups of group_size (Morton order at the build); the
+      // slot of each lane (the first member's for unused lanes), the local
+      // index of each lane (invalid for unused lanes), and the union of the
+      // members' lists in compressed rows, sorted by slot.
+      std::vector<unsigned int> group_slots;
+      std::vector<unsigned int> group_members;
+      std::vector<std::size_t>  group_start;
+      std::vector<unsigned int> group_neighbours;
+      /// Length of each local point's own list (0: no receiver at the build).
+      std::vector<unsigned int> list_length;
 
-      // Communication buffers, kept to avoid reallocation.
+      // Per-call work arrays and communication buffers, kept to avoid
+      // reallocation.
+      std::vector<unsigned char>       group_active;
+      std::vector<double>              group_numerators, group_denominators;
+      std::vector<std::int64_t>        group_interacting;
+      std::vector<double>              weight_buffer;
+      std::vector<unsigned int>        inside_buffer;
+      std::vector<MPI_Request>         requests;
       std::vector<std::vector<double>> send_buffers;
       std::vector<double>              receive_buffer;
 
