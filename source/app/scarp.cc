@@ -1,4 +1,5 @@
-// The scarp command line: scarp [--help | --print-parameters [format]] scene.prm
+// The scarp command line:
+//   scarp [--help | --print-parameters [format] | --resume DIR] scene.prm
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -27,6 +28,11 @@ namespace
          "Usage:\n"
          "  scarp scene.prm                  run a scene\n"
          "  mpirun -np N scarp scene.prm     the same on N MPI ranks\n"
+         "  scarp --resume DIR scene.prm     resume the scene from the\n"
+         "                                   checkpoint DIR (a checkpoint\n"
+         "                                   directory, or the output\n"
+         "                                   directory that holds one), on\n"
+         "                                   any number of ranks\n"
          "  scarp --print-parameters [FORMAT] [--dimension D]\n"
          "                                   print every entry with its\n"
          "                                   documentation, default and\n"
@@ -36,18 +42,25 @@ namespace
          "\n"
          "A run writes to its <Output directory>: particles_*.vtu/pvtu and\n"
          "particles.pvd, mesh_*.vtu/pvtu and mesh.pvd (open the .pvd files\n"
-         "in ParaView), statistics.csv and summary.json.\n";
+         "in ParaView), statistics.csv and summary.json, and checkpoints\n"
+         "in checkpoint/ (at the end of each stage, at <Checkpoint>\n"
+         "intervals, and on SIGTERM or SIGINT, after which the run stops\n"
+         "with exit status 1).\n";
   }
 
 
   template <int dim>
   void
-  run_scene(const std::string &filename, const simulation::SceneLists &lists)
+  run_scene(const std::string            &filename,
+            const simulation::SceneLists &lists,
+            const std::string            &resume)
   {
     ParameterHandler prm;
     simulation::Simulation<dim>::declare_parameters(prm, lists);
     ParameterTools::parse_file(prm, filename);
     simulation::Simulation<dim> sim(MPI_COMM_WORLD, lists);
+    if (!resume.empty())
+      sim.set_resume_directory(resume);
     sim.parse_parameters(prm);
     sim.run();
   }
@@ -63,10 +76,9 @@ namespace
       simulation::Simulation<2>::declare_parameters(prm, lists);
     else
       simulation::Simulation<3>::declare_parameters(prm, lists);
-    const auto style = format == "json" ? ParameterHandler::JSON :
-                       format == "description" ?
-                                          ParameterHandler::Description :
-                                          ParameterHandler::PRM;
+    const auto style = format == "json"          ? ParameterHandler::JSON
+                       : format == "description" ? ParameterHandler::Description
+                                                 : ParameterHandler::PRM;
     prm.print_parameters(std::cout, style);
   }
 } // namespace
@@ -109,6 +121,15 @@ main(int argc, char **argv)
             print_parameters(format, dim);
           return 0;
         }
+      std::string resume;
+      if (args[0] == "--resume")
+        {
+          if (args.size() < 2)
+            throw ScarpError("--resume needs a checkpoint directory; see "
+                             "scarp --help.");
+          resume = args[1];
+          args.erase(args.begin(), args.begin() + 2);
+        }
       if (args.size() != 1 || args[0].rfind("-", 0) == 0)
         throw ScarpError("expected one scene file; see scarp --help.");
       // An unreadable file is reported by the parser, in the format of
@@ -116,9 +137,9 @@ main(int argc, char **argv)
       const std::string filename = args[0];
       const auto        lists    = simulation::SceneLists::read(filename);
       if (lists.dimension == 2)
-        run_scene<2>(filename, lists);
+        run_scene<2>(filename, lists, resume);
       else
-        run_scene<3>(filename, lists);
+        run_scene<3>(filename, lists, resume);
     }
   catch (const ScarpError &e)
     {

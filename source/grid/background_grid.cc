@@ -181,16 +181,7 @@ namespace scarp
     void
     BackgroundGrid<dim>::create_mesh()
     {
-      std::vector<unsigned int> repetitions(dim);
-      for (unsigned int d = 0; d < dim; ++d)
-        repetitions[d] =
-          static_cast<unsigned int>(std::round(box.side_length(d) / cell_size));
-      GridGenerator::subdivided_hyper_rectangle(
-        tria,
-        repetitions,
-        box.get_boundary_points().first,
-        box.get_boundary_points().second,
-        /*colorize=*/true);
+      create_coarse_mesh();
       if (min_refinement_level > 0)
         tria.refine_global(min_refinement_level);
       for (unsigned int level = min_refinement_level; level < initial_levels;
@@ -203,6 +194,23 @@ namespace scarp
               cell->set_refine_flag();
           tria.execute_coarsening_and_refinement();
         }
+    }
+
+
+    template <int dim>
+    void
+    BackgroundGrid<dim>::create_coarse_mesh()
+    {
+      std::vector<unsigned int> repetitions(dim);
+      for (unsigned int d = 0; d < dim; ++d)
+        repetitions[d] =
+          static_cast<unsigned int>(std::round(box.side_length(d) / cell_size));
+      GridGenerator::subdivided_hyper_rectangle(
+        tria,
+        repetitions,
+        box.get_boundary_points().first,
+        box.get_boundary_points().second,
+        /*colorize=*/true);
     }
 
 

@@ -9,12 +9,20 @@ namespace scarp
   {
     StatisticsFile::StatisticsFile(const std::string              &filename,
                                    const std::vector<std::string> &columns,
-                                   const bool                      is_writer)
+                                   const bool                      is_writer,
+                                   const bool                      append)
       : n_columns(columns.size())
       , is_writer(is_writer)
     {
       if (!is_writer)
         return;
+      if (append)
+        {
+          file.open(filename, std::ios::app);
+          if (!file)
+            throw ScarpError("Cannot append to <" + filename + ">.");
+          return;
+        }
       file.open(filename);
       if (!file)
         throw ScarpError("Cannot write <" + filename + ">.");

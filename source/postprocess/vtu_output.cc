@@ -16,7 +16,8 @@ namespace scarp
                               MPI_Comm           communicator)
       : directory(directory)
       , communicator(communicator)
-    {}
+    {
+    }
 
 
     template <int dim>
@@ -39,6 +40,20 @@ namespace scarp
 
     template <int dim>
     void
+    VtuOutput<dim>::restore_records(
+      const std::pair<std::vector<std::pair<double, std::string>>,
+                      std::vector<std::pair<double, std::string>>> &records)
+    {
+      particle_records = records.first;
+      mesh_records     = records.second;
+      write_pvd("particles", particle_records);
+      if (!mesh_records.empty())
+        write_pvd("mesh", mesh_records);
+    }
+
+
+    template <int dim>
+    void
     VtuOutput<dim>::write_particles(
       const Particles::ParticleHandler<dim> &particles,
       const particles::PropertyLayout<dim>  &layout,
@@ -50,7 +65,7 @@ namespace scarp
                              layout.names(),
                              layout.interpretations());
       DataOutBase::VtkFlags flags;
-      flags.time              = time;
+      flags.time = time;
       flags.compression_level =
         DataOutBase::VtkFlags::ZlibCompressionLevel::best_speed;
       data_out.set_flags(flags);
@@ -69,14 +84,14 @@ namespace scarp
                                const double                     time,
                                const unsigned int               index)
     {
-      const auto &tria = grid.dof_handler().get_triangulation();
+      const auto           &tria = grid.dof_handler().get_triangulation();
       dealii::Vector<float> level(tria.n_active_cells()),
         rank(tria.n_active_cells());
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             level(cell->active_cell_index()) = cell->level();
-            rank(cell->active_cell_index()) = cell->subdomain_id();
+            rank(cell->active_cell_index())  = cell->subdomain_id();
           }
       DataOut<dim> data_out;
       data_out.attach_dof_handler(grid.dof_handler());

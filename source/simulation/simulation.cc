@@ -43,6 +43,7 @@ namespace scarp
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
       , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
       , grid(communicator)
+      , checkpoint(communicator)
     {
     }
 
@@ -217,6 +218,7 @@ namespace scarp
                         "Repartition when max/mean - 1 of the points per "
                         "rank exceeds this.");
       prm.leave_subsection();
+      Checkpoint<dim>::declare_parameters(prm);
       prm.enter_subsection("Stability");
       prm.declare_entry("Energy growth tolerance",
                         "0.1",
@@ -427,6 +429,7 @@ namespace scarp
       growth_tolerance = prm.get_double("Energy growth tolerance");
       remove_outside   = prm.get("Points leaving the mesh") == "remove";
       prm.leave_subsection();
+      checkpoint.parse_parameters(prm);
 
       // The particle layout holds only what this scene needs.
       std::vector<std::string> state_names;
@@ -483,13 +486,18 @@ namespace scarp
       if (mpm)
         return;
       TimerOutput::Scope scope(timer, "setup");
-      grid.create_mesh();
-      grid.setup_dofs();
-      particles.initialize(grid.triangulation(),
-                           grid.mapping(),
-                           layout.n_properties());
-      seed_bodies();
-      balance_load();
+      if (checkpoint.resuming())
+        load_checkpoint();
+      else
+        {
+          grid.create_mesh();
+          grid.setup_dofs();
+          particles.initialize(grid.triangulation(),
+                               grid.mapping(),
+                               layout.n_properties());
+          seed_bodies();
+          balance_load();
+        }
       mpm = std::make_unique<transfer::MpmTransfer<dim>>(
         grid, particles, layout, material_pointers, transfer_parameters);
       mpm->setup();
@@ -498,6 +506,8 @@ namespace scarp
       for (const auto &m : materials)
         rho_max = std::max(rho_max, m->density());
       mpm->set_mass_cutoff_density(transfer_parameters.mass_cutoff * rho_max);
+      if (checkpoint.resuming())
+        return; // the loop state came with the checkpoint
       last_report = measure();
       initial_energy =
         last_report.kinetic_energy + last_report.gravitational_energy;
@@ -1291,23 +1301,44 @@ namespace scarp
                                        "wall_time"};
       if (reference_displacement)
         columns.push_back("reference_error");
+      // Resumed: statistics.csv and the PVD files as they were at the
+      // checkpoint (the rows and outputs after it drop out), then appended.
       statistics = std::make_unique<postprocess::StatisticsFile>(
         output_directory + "/statistics.csv",
         columns,
-        Utilities::MPI::this_mpi_process(communicator) == 0);
-      write_statistics(last_report, stages.front());
-      write_output();
-      next_output = output_interval;
-
-      for (current_stage = 0; current_stage < stages.size(); ++current_stage)
+        Utilities::MPI::this_mpi_process(communicator) == 0,
+        checkpoint.resuming());
+      if (checkpoint.resuming())
         {
-          const Stage       &stage      = stages[current_stage];
-          const double       start_time = current_time;
-          const unsigned int start_step = step;
+          vtu->restore_records(restored_records);
+          pcout << "Resumed from " << checkpoint.loaded_directory()
+                << " at step " << step << ", t = " << current_time << " s"
+                << std::endl;
+        }
+      else
+        {
+          write_statistics(last_report, stages.front());
+          write_output();
+          next_output   = output_interval;
+          current_stage = 0;
+        }
+      checkpoint.start();
+
+      for (; current_stage < stages.size(); ++current_stage)
+        {
+          const Stage &stage = stages[current_stage];
+          if (!stage_in_progress)
+            {
+              stage_start_time   = current_time;
+              stage_start_step   = step;
+              stage_peak_kinetic = 0;
+              settled_since      = -1;
+              stage_in_progress  = true;
+            }
+          const double       start_time = stage_start_time;
+          const unsigned int start_step = stage_start_step;
           const double       start_wall = wall_clock.wall_time();
-          stage_peak_kinetic            = 0;
-          settled_since                 = -1;
-          std::string reason            = "end time";
+          std::string        reason     = "end time";
           pcout << "Stage " << stage.name << " (to t = " << stage.end_time
                 << " s)" << std::endl;
           if (cliff && stage.damage && damage_stage_start < 0)
@@ -1358,6 +1389,7 @@ namespace scarp
                       break;
                     }
                 }
+              checkpoint_if_due();
             }
           if (stage.reset_displacement)
             for (auto &particle : particles)
@@ -1378,8 +1410,11 @@ namespace scarp
           pcout << "Stage " << stage.name << " ended (" << reason
                 << ") at t = " << current_time << " s after "
                 << step - start_step << " steps" << std::endl;
+          stage_in_progress = false;
           if (after_failure_taken && stop_after_failure)
             break;
+          if (checkpoint.at_stage_ends() && current_stage + 1 < stages.size())
+            write_checkpoint();
         }
       if (cliff && after_failure_taken && stop_after_failure)
         {

@@ -35,9 +35,15 @@ namespace scarp
       void
       parse_parameters(ParameterHandler &prm);
 
-      /// Build the coarse mesh (cells of the requested size).
+      /// Build the coarse mesh (cells of the requested size) and refine
+      /// it to <Minimum level> and <Initial levels>.
       void
       create_mesh();
+
+      /// Only the coarse mesh, without any refinement: what
+      /// parallel::distributed::Triangulation::load() of a checkpoint needs.
+      void
+      create_coarse_mesh();
 
       /// Distribute dofs, build constraints and boundary node lists; call
       /// after every change of the mesh.

@@ -1,6 +1,10 @@
 #ifndef scarp_postprocess_json_writer_h
 #define scarp_postprocess_json_writer_h
 
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,6 +35,14 @@ namespace scarp
       /// never sees half a file.
       void
       write(const std::string &filename) const;
+
+      /// For checkpoints (boost serialization).
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &entries;
+      }
 
     private:
       std::vector<std::pair<std::string, std::string>> entries;

@@ -17,9 +17,12 @@ namespace scarp
     class StatisticsFile
     {
     public:
+      /// With @p append the file exists (restored from a checkpoint) and
+      /// rows are appended to it; else it is created with a header line.
       StatisticsFile(const std::string              &filename,
                      const std::vector<std::string> &columns,
-                     const bool                      is_writer);
+                     const bool                      is_writer,
+                     const bool                      append = false);
 
       /// Append a row (values in the order of the columns).
       void

@@ -44,11 +44,28 @@ namespace scarp
                  const double                     time,
                  const unsigned int               index);
 
+      /// The (time, file) records of the PVD files: the particles' and
+      /// the mesh's (for checkpoints).
+      std::pair<std::vector<std::pair<double, std::string>>,
+                std::vector<std::pair<double, std::string>>>
+      records() const
+      {
+        return {particle_records, mesh_records};
+      }
+
+      /// Take the records of a checkpoint and rewrite the PVD files with
+      /// them: outputs written after the checkpoint drop out, the next
+      /// output continues the series.
+      void
+      restore_records(
+        const std::pair<std::vector<std::pair<double, std::string>>,
+                        std::vector<std::pair<double, std::string>>> &records);
+
     private:
       void
-      write_pvd(const std::string                                &name,
-                const std::vector<std::pair<double, std::string>> &records)
-        const;
+      write_pvd(
+        const std::string                                 &name,
+        const std::vector<std::pair<double, std::string>> &records) const;
 
       std::string                                 directory;
       MPI_Comm                                    communicator;

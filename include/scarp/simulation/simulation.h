@@ -19,6 +19,7 @@
 #include <scarp/postprocess/vtu_output.h>
 #include <scarp/scenes/cliff_profile.h>
 #include <scarp/scenes/shape.h>
+#include <scarp/simulation/checkpoint.h>
 #include <scarp/simulation/scene_lists.h>
 #include <scarp/simulation/stage.h>
 #include <scarp/transfer/mpm_transfer.h>
@@ -51,9 +52,20 @@ namespace scarp
       void
       parse_parameters(ParameterHandler &prm);
 
-      /// Build the mesh and seed the bodies (no step yet).
+      /// Build the mesh and seed the bodies (no step yet); or, when the
+      /// run resumes (set_resume_directory(), <Checkpoint/Resume from>),
+      /// read the mesh, the points and the loop state of the checkpoint.
       void
       setup();
+
+      /// Resume from this checkpoint directory (or an output directory
+      /// holding one) instead of seeding: the command line's --resume.
+      /// Before setup().
+      void
+      set_resume_directory(const std::string &directory)
+      {
+        checkpoint.set_resume_directory(directory);
+      }
 
       /// Run all stages; writes outputs, statistics.csv and summary.json.
       void
@@ -213,6 +225,20 @@ namespace scarp
       /// "driver near the threshold" (the step before a refinement check).
       bool
       precursors_due(const unsigned int s) const;
+      /// Checkpoints (source/simulation/simulation_checkpoint.cc): the
+      /// loop state to and from an archive, reading a checkpoint in
+      /// setup(), and writing one when due after a step.
+      template <class Archive>
+      void
+      serialize_loop_state(Archive &ar);
+      void
+      load_checkpoint();
+      void
+      write_checkpoint();
+      /// After a step: write a checkpoint when one is due; after SIGTERM or
+      /// SIGINT write one and stop with a ScarpError.
+      void
+      checkpoint_if_due();
       /// Material points of the cliff bodies, gathered on rank 0.
       std::vector<postprocess::CliffDiagnostics::Particle>
       gather_cliff_points() const;
@@ -305,6 +331,17 @@ namespace scarp
       /// End the run once the after-failure snapshot is taken.
       bool   stop_after_failure = false;
       double damage_stage_start = -1;
+
+      // Checkpoints; the stage loop's own state, saved with the rest.
+      /// The stage current_stage has begun (it has a start time and step).
+      bool            stage_in_progress = false;
+      double          stage_start_time  = 0;
+      unsigned int    stage_start_step  = 0;
+      Checkpoint<dim> checkpoint;
+      /// The PVD records read from a checkpoint, for the VtuOutput.
+      std::pair<std::vector<std::pair<double, std::string>>,
+                std::vector<std::pair<double, std::string>>>
+        restored_records;
     };
   } // namespace simulation
 } // namespace scarp

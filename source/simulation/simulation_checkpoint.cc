@@ -1,0 +1,155 @@
+// Simulation: checkpoints and resuming from them (the files and their
+// checks are the job of Checkpoint; here is what the Simulation puts in).
+#include <deal.II/base/mpi.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/simulation/simulation.h>
+
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/binary_object.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <filesystem>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    template <int dim>
+    template <class Archive>
+    void
+    Simulation<dim>::serialize_loop_state(Archive &ar)
+    {
+      // Everything the time loop carries from one step to the next; the
+      // particles and the mesh travel in the triangulation's files.
+      ar &current_time &dt &step &output_index &next_output;
+      ar &initial_energy &internal_work &damping_dissipation
+        &boundary_dissipation &scale_of_energy &last_residual &n_removed;
+      ar &current_stage &stage_in_progress &stage_start_time &stage_start_step
+        &stage_peak_kinetic &settled_since;
+      ar &first_damage_time &failure_time &after_failure_taken
+                                                            &damage_stage_start;
+      ar &stage_summaries                                   &cliff_summary;
+      ar &n_refinement_passes &n_refinement_checks &n_split &n_rebalances;
+      ar &reference_error_max &reference_norm_max &reference_error_last;
+      ar                                          &checkpoint;
+      // A plain struct of numbers.
+      boost::serialization::binary_object report(&last_report,
+                                                 sizeof(last_report));
+      ar                                 &report;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::load_checkpoint()
+    {
+      grid.create_coarse_mesh();
+      particles.initialize(grid.triangulation(),
+                           grid.mapping(),
+                           layout.n_properties());
+      const std::string state =
+        checkpoint.load(grid.triangulation(), particles);
+      try
+        {
+          std::istringstream              in(state);
+          boost::archive::binary_iarchive archive(in);
+          serialize_loop_state(archive);
+          archive &restored_records;
+        }
+      catch (const std::exception &e)
+        {
+          throw ScarpError(
+            "cannot resume from <" + checkpoint.loaded_directory() +
+            ">: its loop state cannot be read (" + e.what() + ").");
+        }
+      // A checkpoint at the end of a stage resumes with the next one.
+      if (!stage_in_progress)
+        ++current_stage;
+      particles.update_cached_numbers();
+      // deal.II 9.4's load() partitions by cells when the number of ranks
+      // changed: partition by the points again.
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        balance_load();
+      else
+        grid.setup_dofs();
+      // The non-local neighbour lists are rebuilt (the averager is new).
+      local_boxes.clear();
+      if (averager)
+        averager->invalidate_neighbour_lists();
+      // statistics.csv as it was at the checkpoint.
+      if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
+          outputs_enabled)
+        {
+          const std::string saved =
+            checkpoint.loaded_directory() + "/statistics.csv";
+          if (std::filesystem::exists(saved))
+            std::filesystem::copy_file(
+              saved,
+              output_directory + "/statistics.csv",
+              std::filesystem::copy_options::overwrite_existing);
+        }
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_checkpoint()
+    {
+      TimerOutput::Scope scope(timer, "checkpoint");
+      std::ostringstream out;
+      {
+        boost::archive::binary_oarchive archive(out);
+        serialize_loop_state(archive);
+        auto     records = vtu ? vtu->records() : restored_records;
+        archive &records;
+      }
+      checkpoint.write(grid.triangulation(),
+                       particles,
+                       out.str(),
+                       {output_directory + "/statistics.csv"},
+                       step,
+                       current_time);
+      pcout << "  checkpoint at step " << step << " (t = " << current_time
+            << " s) in " << checkpoint.directory() << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::checkpoint_if_due()
+    {
+      const auto due = checkpoint.poll(current_time, step);
+      if (due == Checkpoint<dim>::Due::nothing)
+        return;
+      write_checkpoint();
+      if (due != Checkpoint<dim>::Due::stop)
+        return;
+      std::ostringstream message;
+      message << "interrupted by " << checkpoint.signal_name() << " at step "
+              << step << " (t = " << current_time << " s); a checkpoint is in "
+              << checkpoint.directory() << ": resume with scarp --resume "
+              << checkpoint.directory() << " SCENE.prm";
+      write_summary("interrupted: " + message.str());
+      throw ScarpError(message.str());
+    }
+
+
+    template void
+    Simulation<2>::load_checkpoint();
+    template void
+    Simulation<3>::load_checkpoint();
+    template void
+    Simulation<2>::write_checkpoint();
+    template void
+    Simulation<3>::write_checkpoint();
+    template void
+    Simulation<2>::checkpoint_if_due();
+    template void
+    Simulation<3>::checkpoint_if_due();
+  } // namespace simulation
+} // namespace scarp

@@ -1,0 +1,309 @@
+#!/usr/bin/env bash
+# Checkpoint and restart (doc/user_guide.md, "Checkpoint and restart").
+# Arguments (from scarp_add_script_test): scarp, source dir, run dir,
+# mpiexec, mpi flags, then the case:
+#   elastic | chalk | refined  a run stopped by SIGTERM mid-way (test hook
+#       SCARP_TEST_SIGTERM_AT_STEP, rank 0 only) and resumed equals the
+#       uninterrupted run: on 1 rank (resumed on 1), on 2 ranks (resumed
+#       on 2) and written on 2 ranks, resumed on 1; statistics rows and
+#       summary.json numbers compared (compare_runs.py), no duplicated
+#       statistics rows or PVD records. chalk: damage with its non-local
+#       average; refined: the same with adaptive refinement.
+#   kill     a run killed (SIGKILL) while writing its third checkpoint
+#       (test hook SCARP_TEST_KILL_IN_CHECKPOINT) leaves checkpoint.tmp
+#       behind and resumes from the previous checkpoint (the one at the end
+#       of its first stage) to the uninterrupted results; a crash between
+#       the two renames (only checkpoint.old) resumes from that.
+#   refused  a checkpoint of another scene, dimension or format, a
+#       truncated or missing file, an incomplete manifest, a directory
+#       without a checkpoint: exit status 1 and a message saying why.
+set -euo pipefail
+scarp="$1"; src="$2"; run="$3"; mpiexec="$4"; flags="${5//;/ }"; case="$6"
+compare="$src/tests/app/compare_runs.py"
+rm -rf "$run"; mkdir -p "$run"; cd "$run"
+
+elastic_scene() { # output directory
+cat <<PRM
+set Dimension = 2
+set Materials = elastic
+set Bodies    = column
+set Stages    = load, swing
+set Output directory = $1
+subsection Mesh
+  set Lower corner = 0, 0
+  set Upper corner = 3, 5
+  set Cell size    = 0.25
+  subsection Boundary conditions
+    set Bottom = fixed
+  end
+end
+subsection Material elastic
+  set Model   = linear elastic
+  set Density = 1000
+  subsection Elasticity
+    set Young's modulus = 1e6
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Body column
+  set Material = elastic
+  set Particles per cell = 2
+  set Shape = box
+  set Box corners = 1, 0, 2, 4
+  subsection Initial velocity
+    set Function expression = 0.3; 0
+  end
+end
+subsection Transfer
+  set Velocity transfer = FLIP
+  set FLIP fraction     = 0.99
+  set Update scheme     = MUSL
+end
+subsection Stage load
+  set End time     = 0.3
+  set Damping type = viscous
+  set Damping      = 2
+end
+subsection Stage swing
+  set End time = 0.6
+end
+subsection Output
+  set Interval            = 0.1
+  set Statistics interval = 10
+  set Write mesh          = true
+end
+subsection Checkpoint
+  set Time interval = 0.2
+end
+PRM
+}
+
+chalk_scene() { # output directory, adaptive refinement (true|false)
+cat <<PRM
+set Dimension = 2
+set Materials = chalk
+set Bodies    = cliff
+set Stages    = load, fail
+set Output directory = $1
+subsection Mesh
+  set Lower corner = 0, 0
+  set Upper corner = 1.75, 2.5
+  set Cell size    = 0.25
+  subsection Boundary conditions
+    set Left   = slip
+    set Bottom = friction
+  end
+  subsection Refinement
+    set Adaptive refinement = $2
+    set Maximum level       = 1
+    set Interval            = 5
+    set Driver fraction     = 0.5
+  end
+end
+subsection Material chalk
+  set Model   = chalk
+  set Density = 1700
+  subsection Elasticity
+    set Young's modulus = 1e9
+    set Poisson's ratio = 0.24
+  end
+  subsection Mohr-Coulomb
+    set Cohesion       = 1e5
+    set Friction angle = 30
+    set Dilation angle = 0
+  end
+  subsection Damage
+    set Damage angle        = 60
+    set Initiation stress   = 20e3
+    set Ductility           = 5
+    set Characteristic time = 0.01
+    set Length scale        = 0.18
+    set Nonlocal weight     = bell
+    set Residual tensile ratio     = 1e-9
+    set Residual compressive ratio = 1e-2
+    set Residual shear ratio       = 5e-3
+  end
+end
+subsection Body cliff
+  set Material = chalk
+  set Particles per cell = 2
+  set Shape = polygon
+  set Vertices = 0, 0; 0.5, 0; 0.5, 1.5; 1.5, 1.5; 1.5, 2; 0, 2
+end
+subsection Transfer
+  set Shape functions = GIMP
+end
+subsection Stage load
+  set End time     = 0.01
+  set Plasticity   = false
+  set Damage       = false
+  set Damping type = viscous
+  set Damping      = 5
+end
+subsection Stage fail
+  set End time = 0.06
+end
+subsection Output
+  set Interval            = 0.02
+  set Statistics interval = 10
+end
+PRM
+}
+
+# run NAME RANKS [extra args...]: scarp on NAME.prm, log in NAME.log; prints
+# the exit status.
+run() {
+  local name="$1" ranks="$2"; shift 2
+  local status=0
+  if [ "$ranks" = 1 ]; then
+    "$scarp" "$@" "$name.prm" > "$name.log" 2>&1 || status=$?
+  else
+    $mpiexec $flags -np "$ranks" "$scarp" "$@" "$name.prm" > "$name.log" 2>&1 || status=$?
+  fi
+  echo "$status"
+}
+
+fails=0
+ok() { echo "  ok:   $1"; }
+fail() { echo "  FAIL: $1"; fails=$((fails + 1)); }
+expect_status() { # status expected what
+  if [ "$1" = "$2" ]; then ok "$3 (exit status $1)"; else fail "$3: exit status $1, expected $2"; fi
+}
+
+# restart_case SCENE-FUNCTION ARG STOP-STEP SAME-RANKS-TOLERANCE
+#              OTHER-RANKS-TOLERANCE
+restart_case() {
+  local make="$1" arg="$2" stop="$3"
+  for name in full1 full2 stop1 stop2 res11 res22 res21; do
+    $make "$name" $arg > "$name.prm"
+  done
+  expect_status "$(run full1 1)" 0 "uninterrupted run, 1 rank"
+  expect_status "$(run full2 2)" 0 "uninterrupted run, 2 ranks"
+  local s
+  s=$(SCARP_TEST_SIGTERM_AT_STEP=$stop run stop1 1)
+  expect_status "$s" 1 "SIGTERM at step $stop, 1 rank"
+  s=$(SCARP_TEST_SIGTERM_AT_STEP=$stop run stop2 2)
+  expect_status "$s" 1 "SIGTERM at step $stop (rank 0 only), 2 ranks"
+  grep -q "interrupted by SIGTERM at step $stop" stop2.log \
+    && ok "the message names the signal and the step" \
+    || { fail "no 'interrupted by SIGTERM at step $stop' in stop2.log"; tail -3 stop2.log; }
+  # Resume into the output directories of the stopped runs (their
+  # statistics.csv and PVD files hold rows and outputs up to the stop).
+  cp -r stop2 res21
+  rm -rf res11 res22; mv stop1 res11; mv stop2 res22
+  expect_status "$(run res11 1 --resume res11/checkpoint)" 0 "resumed on 1 rank"
+  expect_status "$(run res22 2 --resume res22)" 0 "resumed on 2 ranks"
+  expect_status "$(run res21 1 --resume res21/checkpoint)" 0 "written on 2 ranks, resumed on 1"
+  /usr/bin/python3 "$compare" full1 res11 "$4" || fails=$((fails + 1))
+  /usr/bin/python3 "$compare" full2 res22 "$4" || fails=$((fails + 1))
+  /usr/bin/python3 "$compare" full1 res21 "$5" || fails=$((fails + 1))
+}
+
+case "$case" in
+  elastic)
+    # 0.6 s in 180 steps; SIGTERM at step 100 (in stage swing).
+    # Same ranks: bitwise (to the 10 digits of statistics.csv); 2 -> 1
+    # rank: other sums, round-off.
+    restart_case elastic_scene "" 100 1e-12 1e-9
+    ;;
+  chalk)
+    restart_case chalk_scene false 250 1e-12 1e-6
+    ;;
+  refined)
+    # The loaded mesh numbers its refined cells in another order than the
+    # mesh refined step by step: the sums over cells run in another order
+    # also on the same number of ranks (round-off, 3e-10 measured).
+    restart_case chalk_scene true 250 1e-7 1e-6
+    # The checkpoint holds the refined mesh and the split points.
+    c0=$(sed -n 's/^scarp: 2D, \([0-9]*\) cells.*/\1/p' full1.log)
+    c1=$(sed -n 's/^scarp: 2D, \([0-9]*\) cells.*/\1/p' res11.log)
+    [ "$c1" -gt "$c0" ] && ok "resumed on the refined mesh ($c1 cells, $c0 at the start)" \
+      || fail "resumed on $c1 cells, not refined (start: $c0)"
+    ;;
+  kill)
+    elastic_scene full > full.prm
+    elastic_scene killed > killed.prm
+    run full 1 > /dev/null
+    # Checkpoints: t = 0.2 (interval), 0.3 (end of stage load), 0.4
+    # (interval, killed while written).
+    s=$(SCARP_TEST_KILL_IN_CHECKPOINT=3 run killed 1)
+    [ "$s" != 0 ] && ok "killed while writing checkpoint 3 (exit status $s)" \
+      || fail "the run was not killed"
+    [ -d killed/checkpoint.tmp ] && [ ! -f killed/checkpoint.tmp/manifest ] \
+      && ok "a partial checkpoint.tmp without manifest is left behind" \
+      || fail "no partial checkpoint.tmp"
+    t=$(awk '$1 == "time" {print $2}' killed/checkpoint/manifest)
+    awk -v t="$t" 'BEGIN {exit !(t > 0.3 - 1e-9 && t < 0.3 + 1e-9)}' \
+      && ok "checkpoint/ still holds the previous one, of the end of stage load (t = $t)" \
+      || fail "checkpoint/ holds t = $t, expected 0.3"
+    # A crash between the renames: only checkpoint.old is there.
+    cp -r killed crashed; elastic_scene crashed > crashed.prm
+    mv crashed/checkpoint crashed/checkpoint.old
+    expect_status "$(run killed 1 --resume killed)" 0 "resumed from the previous checkpoint"
+    grep -q "Resumed from killed/checkpoint at" killed.log \
+      && ok "it used killed/checkpoint" || fail "not resumed from killed/checkpoint"
+    /usr/bin/python3 "$compare" full killed 1e-12 || fails=$((fails + 1))
+    expect_status "$(run crashed 1 --resume crashed/checkpoint)" 0 "resumed with only checkpoint.old"
+    grep -q "Resumed from crashed/checkpoint.old" crashed.log \
+      && ok "it used checkpoint.old" || fail "checkpoint.old not used"
+    /usr/bin/python3 "$compare" full crashed 1e-12 || fails=$((fails + 1))
+    [ ! -d killed/checkpoint.tmp ] && ok "the next checkpoint removed checkpoint.tmp" \
+      || fail "checkpoint.tmp still there"
+    ;;
+  refused)
+    elastic_scene base > base.prm
+    SCARP_TEST_SIGTERM_AT_STEP=50 run base 1 > /dev/null
+    refuse() { # name what expected-text
+      local s; s=$(run "$1" 1 --resume "$2")
+      if [ "$s" = 1 ] && grep -q -- "$3" "$1.log"; then
+        ok "refused: $(grep 'scarp: error' "$1.log")"
+      else
+        fail "$1: exit status $s, expected 1 and <$3>:"; tail -3 "$1.log"
+      fi
+    }
+    elastic_scene other | sed "s/Young's modulus = 1e6/Young's modulus = 2e6/" > other.prm
+    refuse other base "written for another scene"
+    cat > three.prm <<'PRM'
+set Dimension = 3
+set Materials = m
+set Bodies    = b
+set Stages    = s
+set Output directory = three
+subsection Mesh
+  set Lower corner = 0, 0, 0
+  set Upper corner = 1, 1, 1
+  set Cell size    = 0.5
+end
+subsection Material m
+  set Model = linear elastic
+end
+subsection Body b
+  set Material = m
+  set Shape = box
+  set Box corners = 0, 0, 0, 1, 1, 1
+end
+subsection Stage s
+  set End time = 0.01
+end
+PRM
+    refuse three base "holds a 2D run"
+    elastic_scene trunc > trunc.prm; cp -r base trunc
+    f=$(ls trunc/checkpoint/mesh_fixed.data trunc/checkpoint/mesh_variable.data 2>/dev/null | head -1)
+    size=$(stat -c %s "$f"); truncate -s $((size / 2)) "$f"
+    refuse trunc trunc "truncated or damaged"
+    elastic_scene missing > missing.prm; cp -r base missing; rm missing/checkpoint/state
+    refuse missing missing "file <state> is missing"
+    elastic_scene version > version.prm; cp -r base version
+    sed -i 's/^format .*/format 999/' version/checkpoint/manifest
+    refuse version version/checkpoint "another version of scarp"
+    elastic_scene partial > partial.prm; cp -r base partial
+    sed -i '/^end$/d' partial/checkpoint/manifest
+    refuse partial partial "manifest is incomplete"
+    elastic_scene none > none.prm; mkdir -p none
+    refuse none none "holds no checkpoint"
+    refuse none nowhere "no such directory"
+    ;;
+  *) echo "unknown case $case"; exit 2 ;;
+esac
+[ "$fails" = 0 ] && echo "all checks passed" || echo "$fails check(s) failed"
+exit $((fails > 0))

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Compare two output directories of the same scene (tests/app/checkpoint.sh):
+an uninterrupted run A and a run B that was stopped and resumed.
+
+    compare_runs.py A B TOLERANCE
+
+* statistics.csv: the same columns and the same number of rows (a resumed
+  run neither loses nor repeats rows), every value but the wall time within
+  TOLERANCE times its column's largest magnitude;
+* particles.pvd (and mesh.pvd): the same records, times within TOLERANCE;
+* summary.json: every number but wall times, speeds, rank counts and the
+  non-local list counters within TOLERANCE (energies: times the largest
+  energy; others: times their own size), every string equal.
+Prints the largest differences; exit status 1 when one is beyond.
+"""
+import csv
+import json
+import os
+import sys
+import xml.etree.ElementTree as ElementTree
+
+a_dir, b_dir, tolerance = sys.argv[1], sys.argv[2], float(sys.argv[3])
+failures = []
+largest = []  # (relative difference, where)
+
+
+def note(difference, where):
+    largest.append((difference, where))
+    if not difference <= tolerance:
+        failures.append(f"{where}: relative difference {difference:.3e}")
+
+
+def statistics():
+    a = list(csv.reader(open(os.path.join(a_dir, "statistics.csv"))))
+    b = list(csv.reader(open(os.path.join(b_dir, "statistics.csv"))))
+    if a[0] != b[0]:
+        failures.append("statistics.csv: other columns")
+        return
+    if len(a) != len(b):
+        failures.append(f"statistics.csv: {len(b) - 1} rows, expected "
+                        f"{len(a) - 1} (rows lost or repeated)")
+        return
+    columns = a[0]
+    for c, name in enumerate(columns):
+        if name == "wall_time":
+            continue
+        scale = max(abs(float(row[c])) for row in a[1:])
+        worst, where = 0.0, ""
+        for ra, rb in zip(a[1:], b[1:]):
+            d = abs(float(ra[c]) - float(rb[c])) / max(scale, 1e-300)
+            if d > worst:
+                worst, where = d, f"statistics.csv {name} at step {ra[0]}"
+        note(worst, where or f"statistics.csv {name}")
+
+
+def pvd(name):
+    path_a = os.path.join(a_dir, name + ".pvd")
+    if not os.path.exists(path_a):
+        return
+    records = []
+    for d in (a_dir, b_dir):
+        root = ElementTree.parse(os.path.join(d, name + ".pvd")).getroot()
+        records.append([(float(e.get("timestep")), e.get("file"))
+                        for e in root.iter("DataSet")])
+    ra, rb = records
+    if [f for _, f in ra] != [f for _, f in rb]:
+        failures.append(f"{name}.pvd: {len(rb)} records, expected "
+                        f"{len(ra)} ({[f for _, f in rb]})")
+        return
+    t_max = max(abs(t) for t, _ in ra)
+    note(max(abs(x - y) for (x, _), (y, _) in zip(ra, rb)) /
+         max(t_max, 1e-300), f"{name}.pvd times")
+
+
+skipped = {"wall_time", "particle_steps_per_second", "wall_time_per_phase",
+           "mpi_ranks", "nonlocal_lists", "load_rebalances"}
+
+
+def summary(a, b, path, scale=None):
+    for key, value in a.items():
+        where = f"{path}/{key}"
+        if key in skipped:
+            continue
+        if key not in b:
+            failures.append(f"summary.json: {where} missing")
+            continue
+        other = b[key]
+        if isinstance(value, dict):
+            group = None
+            if key == "energies":
+                group = max(abs(v) for v in value.values()
+                            if isinstance(v, (int, float)))
+            summary(value, other, where, group)
+        elif isinstance(value, str):
+            if value != other:
+                failures.append(f"summary.json: {where} = <{other}>, "
+                                f"expected <{value}>")
+        elif value is None or other is None:
+            if value != other:
+                failures.append(f"summary.json: {where} {other} vs {value}")
+        else:
+            s = scale if scale else max(abs(value), abs(other))
+            note(abs(value - other) / max(s, 1e-300), f"summary.json {where}")
+
+
+statistics()
+pvd("particles")
+pvd("mesh")
+summary(json.load(open(os.path.join(a_dir, "summary.json"))),
+        json.load(open(os.path.join(b_dir, "summary.json"))), "")
+largest.sort(reverse=True)
+print(f"  {b_dir} against {a_dir} (tolerance {tolerance:g}); largest "
+      "differences:")
+for d, where in largest[:3]:
+    print(f"    {d:.3e}  {where}")
+if failures:
+    for f in failures:
+        print("  FAIL: " + f)
+    sys.exit(1)
+print(f"  ok:   {b_dir} equals {a_dir}")
