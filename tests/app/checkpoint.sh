@@ -13,7 +13,8 @@
 #       (test hook SCARP_TEST_KILL_IN_CHECKPOINT) leaves checkpoint.tmp
 #       behind and resumes from the previous checkpoint (the one at the end
 #       of its first stage) to the uninterrupted results; a crash between
-#       the two renames (only checkpoint.old) resumes from that.
+#       the two renames (only checkpoint.old) resumes from that. A run
+#       with a wall-time interval writes checkpoints.
 #   refused  a checkpoint of another scene, dimension or format, a
 #       truncated or missing file, an incomplete manifest, a directory
 #       without a checkpoint: exit status 1 and a message saying why.
@@ -249,6 +250,14 @@ case "$case" in
     /usr/bin/python3 "$compare" full crashed 1e-12 || fails=$((fails + 1))
     [ ! -d killed/checkpoint.tmp ] && ok "the next checkpoint removed checkpoint.tmp" \
       || fail "checkpoint.tmp still there"
+    # Wall-time checkpoints (every 0.02 s of a run of about 0.3 s), none at
+    # stage ends.
+    elastic_scene wall | sed -e 's/Time interval = 0.2/Wall time interval = 0.02/' \
+      -e 's/^subsection Checkpoint$/subsection Checkpoint\n  set At stage ends = false/' > wall.prm
+    expect_status "$(run wall 1)" 0 "a run with <Wall time interval> = 0.02"
+    n=$(grep -c "checkpoint at step" wall.log || true)
+    [ "$n" -ge 1 ] && [ -f wall/checkpoint/manifest ] \
+      && ok "it wrote $n checkpoint(s) by wall time" || fail "no checkpoint by wall time"
     ;;
   refused)
     elastic_scene base > base.prm
