@@ -14,7 +14,8 @@
 #       behind and resumes from the previous checkpoint (the one at the end
 #       of its first stage) to the uninterrupted results; a crash between
 #       the two renames (only checkpoint.old) resumes from that. A run
-#       with a wall-time interval writes checkpoints.
+#       sent SIGINT from outside writes a checkpoint and stops; a run with
+#       a wall-time interval writes checkpoints.
 #   refused  a checkpoint of another scene, dimension or format, a
 #       truncated or missing file, an incomplete manifest, a directory
 #       without a checkpoint: exit status 1 and a message saying why.
@@ -250,6 +251,20 @@ case "$case" in
     /usr/bin/python3 "$compare" full crashed 1e-12 || fails=$((fails + 1))
     [ ! -d killed/checkpoint.tmp ] && ok "the next checkpoint removed checkpoint.tmp" \
       || fail "checkpoint.tmp still there"
+    # A real signal from outside: SIGINT to a long run once it has written
+    # a few statistics rows.
+    elastic_scene long | sed 's/End time = 0.6/End time = 1000/' > long.prm
+    "$scarp" long.prm > long.log 2>&1 &
+    pid=$!
+    for i in $(seq 1 600); do
+      [ -f long/statistics.csv ] && [ "$(wc -l < long/statistics.csv)" -ge 5 ] && break
+      sleep 0.05
+    done
+    kill -INT "$pid"
+    s=0; wait "$pid" || s=$?
+    [ "$s" = 1 ] && grep -q "interrupted by SIGINT" long.log && [ -f long/checkpoint/manifest ] \
+      && ok "SIGINT from outside: checkpoint written, exit status 1" \
+      || { fail "SIGINT from outside: exit status $s"; tail -3 long.log; }
     # Wall-time checkpoints (every 0.02 s of a run of about 0.3 s), none at
     # stage ends.
     elastic_scene wall | sed -e 's/Time interval = 0.2/Wall time interval = 0.02/' \
