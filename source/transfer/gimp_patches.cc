@@ -9,9 +9,12 @@ namespace scarp
   {
     template <int dim>
     void
-    GimpPatches<dim>::reinit(const DoFHandler<dim>           &dof_handler,
-                             const AffineConstraints<double> &constraint_set)
+    GimpPatches<dim>::reinit(
+      const DoFHandler<dim>             &dof_handler,
+      const AffineConstraints<double>   &constraint_set,
+      const Utilities::MPI::Partitioner &vector_partitioner)
     {
+      partitioner      = &vector_partitioner;
       dofs             = &dof_handler;
       constraints      = &constraint_set;
       const auto &tria = dof_handler.get_triangulation();
@@ -101,6 +104,8 @@ namespace scarp
               p.entry_begin.push_back(p.entry_node.size());
             }
         }
+      for (const types::global_dof_index dof : p.node_dofs)
+        p.node_local.push_back(partitioner->global_to_local(dof));
       index = patches.size();
       patches.push_back(std::move(p));
       return patches.back();

@@ -121,7 +121,9 @@ namespace scarp
                           &velocity_new[d],
                           &velocity_remapped[d]})
           v->reinit(mass);
-      patches.reinit(grid.dof_handler(), grid.constraints());
+      patches.reinit(grid.dof_handler(),
+                     grid.constraints(),
+                     *mass.get_partitioner());
       compute_node_cutoffs();
     }
 
@@ -165,6 +167,7 @@ namespace scarp
       std::vector<types::global_dof_index>                 &dofs,
       std::vector<Point<dim>>                              &positions,
       const types::global_dof_index                       *&dof_ptr,
+      const unsigned int                                  *&local_ptr,
       const Point<dim>                                    *&node_ptr,
       const typename GimpPatches<dim>::Patch              *&patch)
     {
@@ -175,9 +178,10 @@ namespace scarp
       if (parameters.shape_functions == ShapeFunctions::gimp)
         {
           // The patch's own arrays: no copy per cell and sweep.
-          patch    = &patches.patch(cell);
-          dof_ptr  = patch->node_dofs.data();
-          node_ptr = patch->node_positions.data();
+          patch     = &patches.patch(cell);
+          dof_ptr   = patch->node_dofs.data();
+          local_ptr = patch->node_local.data();
+          node_ptr  = patch->node_positions.data();
           return patch->n_nodes();
         }
       patch = nullptr;
@@ -187,8 +191,12 @@ namespace scarp
       for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
         for (unsigned int d = 0; d < dim; ++d)
           positions[i][d] = x0[d] + h * Q1Shape<dim>::offset(i, d);
-      dof_ptr  = dofs.data();
-      node_ptr = positions.data();
+      q1_local.resize(Q1Shape<dim>::n);
+      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+        q1_local[i] = mass.get_partitioner()->global_to_local(dofs[i]);
+      dof_ptr   = dofs.data();
+      local_ptr = q1_local.data();
+      node_ptr  = positions.data();
       return Q1Shape<dim>::n;
     }
 
@@ -244,9 +252,17 @@ namespace scarp
           Point<dim>                              x0;
           const typename GimpPatches<dim>::Patch *patch;
           const types::global_dof_index          *dof_ptr;
+          const unsigned int                     *local_ptr;
           const Point<dim>                       *node_ptr;
-          cell_nodes(
-            occupied.cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
+          cell_nodes(occupied.cell,
+                     h,
+                     x0,
+                     dofs,
+                     node,
+                     dof_ptr,
+                     local_ptr,
+                     node_ptr,
+                     patch);
           for (const auto &particle : occupied.particles)
             {
               const double *p  = particle.get_properties().data();
@@ -303,9 +319,10 @@ namespace scarp
           Point<dim>  x0;
           const typename GimpPatches<dim>::Patch *patch;
           const types::global_dof_index          *dof_ptr;
+          const unsigned int                     *local_ptr;
           const Point<dim>                       *node_ptr;
-          const unsigned int                      n =
-            cell_nodes(cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
+          const unsigned int                      n = cell_nodes(
+            cell, h, x0, dofs, node, dof_ptr, local_ptr, node_ptr, patch);
           local_mass.reinit(n);
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -376,12 +393,14 @@ namespace scarp
             {
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  mass(dof_ptr[i]) += local_mass(i);
+                  mass.local_element(local_ptr[i]) += local_mass(i);
                   for (unsigned int d = 0; d < dim; ++d)
                     {
-                      momentum[d](dof_ptr[i]) += local_momentum[d](i);
+                      momentum[d].local_element(local_ptr[i]) +=
+                        local_momentum[d](i);
                       if (!momentum_only)
-                        force[d](dof_ptr[i]) += local_force[d](i);
+                        force[d].local_element(local_ptr[i]) +=
+                          local_force[d](i);
                     }
                 }
               continue;
@@ -585,9 +604,10 @@ namespace scarp
           Point<dim>  x0;
           const typename GimpPatches<dim>::Patch *patch;
           const types::global_dof_index          *dof_ptr;
+          const unsigned int                     *local_ptr;
           const Point<dim>                       *node_ptr;
-          const unsigned int                      n =
-            cell_nodes(cell, h, x0, dofs, node, dof_ptr, node_ptr, patch);
+          const unsigned int                      n = cell_nodes(
+            cell, h, x0, dofs, node, dof_ptr, local_ptr, node_ptr, patch);
           v_new.resize(n);
           v_old.resize(n);
           v_stress.resize(n);
@@ -598,14 +618,14 @@ namespace scarp
           // which keeps sum_i grad S_i = 0 and uniform motion strain-free.
           for (unsigned int i = 0; i < n; ++i)
             empty[i] =
-              mass(dof_ptr[i]) == 0. &&
+              mass.local_element(local_ptr[i]) == 0. &&
               (patch || !grid.constraints().is_constrained(dof_ptr[i]));
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                v_new[i][d]    = velocity_new[d](dof_ptr[i]);
-                v_old[i][d]    = velocity_old[d](dof_ptr[i]);
-                v_stress[i][d] = stress_velocity[d](dof_ptr[i]);
+                v_new[i][d]    = velocity_new[d].local_element(local_ptr[i]);
+                v_old[i][d]    = velocity_old[d].local_element(local_ptr[i]);
+                v_stress[i][d] = stress_velocity[d].local_element(local_ptr[i]);
               }
           for (auto &b : batches)
             b.clear();

@@ -59,11 +59,12 @@ namespace
   template <int dim>
   struct Setup
   {
-    parallel::distributed::Triangulation<dim> tria;
-    FE_Q<dim>                                 fe;
-    DoFHandler<dim>                           dofs;
-    AffineConstraints<double>                 constraints;
-    GimpPatches<dim>                          patches;
+    parallel::distributed::Triangulation<dim>    tria;
+    FE_Q<dim>                                    fe;
+    DoFHandler<dim>                              dofs;
+    AffineConstraints<double>                    constraints;
+    GimpPatches<dim>                             patches;
+    std::shared_ptr<Utilities::MPI::Partitioner> partitioner;
 
     explicit Setup(const unsigned int levels)
       : tria(MPI_COMM_WORLD,
@@ -78,7 +79,12 @@ namespace
       constraints.reinit(relevant);
       DoFTools::make_hanging_node_constraints(dofs, constraints);
       constraints.close();
-      patches.reinit(dofs, constraints);
+      IndexSet owned = dofs.locally_owned_dofs();
+      partitioner =
+        std::make_shared<Utilities::MPI::Partitioner>(owned,
+                                                      relevant,
+                                                      MPI_COMM_WORLD);
+      patches.reinit(dofs, constraints, *partitioner);
     }
   };
 

@@ -2,6 +2,7 @@
 #define scarp_transfer_gimp_patches_h
 
 #include <deal.II/base/bounding_box.h>
+#include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -70,6 +71,9 @@ namespace scarp
         /// The unconstrained dofs of the patch and their positions.
         std::vector<types::global_dof_index> node_dofs;
         std::vector<Point<dim>>              node_positions;
+        /// Their indices in the local storage of the grid vectors (owned,
+        /// then ghost), for local_element() instead of a global lookup.
+        std::vector<unsigned int> node_local;
 
         unsigned int
         n_nodes() const
@@ -80,8 +84,9 @@ namespace scarp
 
       /// Forget all patches; call after every change of the mesh or dofs.
       void
-      reinit(const DoFHandler<dim>           &dof_handler,
-             const AffineConstraints<double> &constraints);
+      reinit(const DoFHandler<dim>             &dof_handler,
+             const AffineConstraints<double>   &constraints,
+             const Utilities::MPI::Partitioner &partitioner);
 
       /// The patch of a locally owned cell (built the first time asked).
       const Patch &
@@ -105,8 +110,9 @@ namespace scarp
       }
 
     private:
-      const DoFHandler<dim>           *dofs        = nullptr;
-      const AffineConstraints<double> *constraints = nullptr;
+      const DoFHandler<dim>             *dofs        = nullptr;
+      const AffineConstraints<double>   *constraints = nullptr;
+      const Utilities::MPI::Partitioner *partitioner = nullptr;
       /// Active cells at each vertex (only non-artificial cells).
       std::vector<std::vector<typename DoFHandler<dim>::active_cell_iterator>>
                          vertex_cells;

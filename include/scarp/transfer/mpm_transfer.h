@@ -159,7 +159,9 @@ namespace scarp
       /// 2^dim (constrained if hanging; stored in @p dofs, @p positions),
       /// with GIMP the unconstrained nodes of its patch (the patch's arrays).
       /// Sets @p h and @p x0 (edge and lowest vertex), @p dof_ptr and
-      /// @p node_ptr to the nodes' dofs and positions; returns their number.
+      /// @p node_ptr to the nodes' dofs and positions, @p local_ptr to their
+      /// indices in the local storage of the grid vectors; returns their
+      /// number.
       unsigned int
       cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
                  double                                               &h,
@@ -167,6 +169,7 @@ namespace scarp
                  std::vector<types::global_dof_index>                 &dofs,
                  std::vector<Point<dim>>                 &positions,
                  const types::global_dof_index          *&dof_ptr,
+                 const unsigned int                     *&local_ptr,
                  const Point<dim>                       *&node_ptr,
                  const typename GimpPatches<dim>::Patch *&patch);
       /// Weights and gradients of the point at reference location @p xi
@@ -229,6 +232,9 @@ namespace scarp
       std::vector<unsigned int>   shape_node;
       std::vector<double>         shape_value;
       std::vector<Tensor<1, dim>> shape_gradient;
+
+      /// Local vector indices of the nodes of the current Q1 cell.
+      std::vector<unsigned int> q1_local;
 
       /// GIMP patches of the occupied cells (built as cells fill).
       GimpPatches<dim> patches;
