@@ -161,6 +161,17 @@ namespace scarp
 
     template <int dim>
     void
+    Checkpoint<dim>::set_particle_properties(
+      const std::vector<std::string> &names)
+    {
+      properties.clear();
+      for (const auto &name : names)
+        properties += (properties.empty() ? "" : ",") + name;
+    }
+
+
+    template <int dim>
+    void
     Checkpoint<dim>::set_resume_directory(const std::string &directory)
     {
       resume_from = directory;
@@ -298,6 +309,7 @@ namespace scarp
               << "format " << format_version << "\n"
               << "dimension " << dim << "\n"
               << "scene " << scene_hash << "\n"
+              << "properties " << properties << "\n"
               << "ranks " << Utilities::MPI::n_mpi_processes(communicator)
               << "\n"
               << "step " << step << "\n"
@@ -367,7 +379,7 @@ namespace scarp
         return "<" + dir + "/manifest> is not a scarp checkpoint manifest.";
       std::string  key, value;
       unsigned int format = 0, dimension = 0;
-      std::string  hash;
+      std::string  hash, saved_properties;
       std::vector<std::pair<std::string, std::uintmax_t>> files;
       while (in >> key)
         {
@@ -379,6 +391,12 @@ namespace scarp
               std::uintmax_t size = 0;
               in >> name >> size;
               files.emplace_back(name, size);
+              continue;
+            }
+          if (key == "properties")
+            {
+              in >> std::ws;
+              std::getline(in, saved_properties);
               continue;
             }
           in >> value;
@@ -402,6 +420,10 @@ namespace scarp
                ", this scene's is " + scene_hash +
                "): every entry but those of <Checkpoint> and <Output "
                "directory> must be the same as in the run that wrote it.";
+      if (saved_properties != properties)
+        return "its material points carry other properties (" +
+               saved_properties + ") than this scarp gives them (" +
+               properties + "): it was written by another version of scarp.";
       for (const auto &[name, size] : files)
         {
           const std::string file = dir + "/" + name;

@@ -437,6 +437,7 @@ namespace scarp
         if (m->n_state_variables() > state_names.size())
           state_names = m->state_variable_names();
       layout.build(any_apic, state_names);
+      checkpoint.set_particle_properties(layout.names());
 
       if (any_damage)
         {

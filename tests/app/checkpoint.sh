@@ -16,7 +16,8 @@
 #       the two renames (only checkpoint.old) resumes from that. A run
 #       sent SIGINT from outside writes a checkpoint and stops; a run with
 #       a wall-time interval writes checkpoints.
-#   refused  a checkpoint of another scene, dimension or format, a
+#   refused  a checkpoint of another scene, dimension or format, with
+#       other particle properties (another scarp), a
 #       truncated or missing file, an incomplete manifest, a directory
 #       without a checkpoint: exit status 1 and a message saying why.
 set -euo pipefail
@@ -320,6 +321,9 @@ PRM
     elastic_scene version > version.prm; cp -r base version
     sed -i 's/^format .*/format 999/' version/checkpoint/manifest
     refuse version version/checkpoint "another version of scarp"
+    elastic_scene props > props.prm; cp -r base props
+    sed -i 's/^properties .*/properties mass,velocity/' props/checkpoint/manifest
+    refuse props props "carry other properties"
     elastic_scene partial > partial.prm; cp -r base partial
     sed -i '/^end$/d' partial/checkpoint/manifest
     refuse partial partial "manifest is incomplete"

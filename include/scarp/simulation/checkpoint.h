@@ -55,6 +55,12 @@ namespace scarp
       void
       parse_parameters(ParameterHandler &prm);
 
+      /// The names of the particle properties (the layout this scene's
+      /// points carry): a checkpoint whose points carry others, from
+      /// another version of scarp, is refused.
+      void
+      set_particle_properties(const std::vector<std::string> &names);
+
       /// Resume from @p directory (the command line's --resume, which
       /// overrides <Resume from>); empty: start afresh.
       void
@@ -152,6 +158,7 @@ namespace scarp
       std::string  output_directory = "output";
       std::string  resume_from;
       std::string  scene_hash;
+      std::string  properties;
       double       wall_interval = 0;
       double       time_interval = 0;
       bool         stage_ends    = true;
