@@ -53,10 +53,10 @@ namespace scarp
           const std::set<std::string> unique(list->begin(), list->end());
           if (unique.size() != list->size())
             throw ScarpError("A name appears twice in the list <" +
-                             prm.get(list == &materials ? "Materials" :
-                                     list == &bodies    ? "Bodies" :
-                                     list == &regions   ? "Pre-damaged regions" :
-                                                          "Stages") +
+                             prm.get(list == &materials ? "Materials"
+                                     : list == &bodies  ? "Bodies"
+                                     : list == &regions ? "Pre-damaged regions"
+                                                        : "Stages") +
                              ">.");
         }
       if (materials.empty() || bodies.empty() || stages.empty())

@@ -775,9 +775,10 @@ namespace scarp
       double c = 0;
       for (const auto &m : materials)
         c = std::max(c, std::sqrt(m->p_wave_modulus() / m->density()));
+      // Mass scaling slows the waves by the square root of its factor.
       return std::min(max_time_step,
                       cfl * grid.minimum_cell_size() /
-                        (c + last_report.max_speed));
+                        (c / std::sqrt(inertia_scale) + last_report.max_speed));
     }
 
 
@@ -893,13 +894,15 @@ namespace scarp
       else
         {
           // Energy balance: everything that entered minus what left.
-          const double balance = report.kinetic_energy +
-                                 report.gravitational_energy + internal_work +
-                                 damping_dissipation + boundary_dissipation;
+          // With mass scaling the kinetic energy of the scaled inertia.
+          const double kinetic = inertia_scale * report.kinetic_energy;
+          const double balance = kinetic + report.gravitational_energy +
+                                 internal_work + damping_dissipation +
+                                 boundary_dissipation + mass_scaling_loss;
           last_residual   = balance - initial_energy;
           scale_of_energy = std::max(
             {scale_of_energy,
-             report.kinetic_energy,
+             kinetic,
              std::abs(report.gravitational_energy -
                       (initial_energy - last_report.kinetic_energy * 0)),
              std::abs(internal_work),
@@ -933,6 +936,19 @@ namespace scarp
     void
     Simulation<dim>::advance(const Stage &stage)
     {
+      // A change of the mass scaling (its end, or a stage with another)
+      // keeps the velocities: the kinetic energy of the inertia that goes
+      // (or comes) is booked so that the balance stays closed.
+      const double scale = (stage.mass_scaling > 1 && !mass_scaling_ended)
+                             ? stage.mass_scaling
+                             : 1;
+      if (scale != inertia_scale)
+        {
+          mass_scaling_loss +=
+            (inertia_scale - scale) * last_report.kinetic_energy;
+          inertia_scale = scale;
+        }
+      mpm->set_mass_scale(inertia_scale);
       dt = stable_time_step();
       if (current_time + dt > stage.end_time)
         dt = std::max(stage.end_time - current_time, 1e-300);
@@ -963,6 +979,18 @@ namespace scarp
       current_time += dt;
       ++step;
       check(report, stage);
+      if (inertia_scale > 1 && stage.mass_scaling_end_speed > 0 &&
+          report.max_speed > stage.mass_scaling_end_speed)
+        {
+          // Real time from the next step on.
+          mass_scaling_ended    = true;
+          mass_scaling_end_time = current_time;
+          pcout << "Stage " << stage.name << ": a point moves at "
+                << report.max_speed << " m/s (> "
+                << stage.mass_scaling_end_speed
+                << " m/s): mass scaling ends at t = " << current_time << " s"
+                << std::endl;
+        }
       nonlocal_damage_step(stage);
       {
         TimerOutput::Scope scope(timer, "sort particles");
@@ -1198,6 +1226,8 @@ namespace scarp
       energies.add("gravitational", last_report.gravitational_energy);
       energies.add("internal_work", internal_work);
       energies.add("damping_dissipation", damping_dissipation);
+      if (mass_scaling_loss != 0)
+        energies.add("mass_scaling_dissipation", mass_scaling_loss);
       energies.add("boundary_dissipation", boundary_dissipation);
       energies.add("plastic_dissipation", last_report.plastic_dissipation);
       energies.add("damage_dissipation", last_report.damage_dissipation);
@@ -1330,11 +1360,13 @@ namespace scarp
           const Stage &stage = stages[current_stage];
           if (!stage_in_progress)
             {
-              stage_start_time   = current_time;
-              stage_start_step   = step;
-              stage_peak_kinetic = 0;
-              settled_since      = -1;
-              stage_in_progress  = true;
+              stage_start_time      = current_time;
+              stage_start_step      = step;
+              stage_peak_kinetic    = 0;
+              settled_since         = -1;
+              stage_in_progress     = true;
+              mass_scaling_ended    = false;
+              mass_scaling_end_time = -1;
             }
           const double       start_time = stage_start_time;
           const unsigned int start_step = stage_start_step;
@@ -1407,6 +1439,11 @@ namespace scarp
           s.add("steps", double(step - start_step));
           s.add("wall_time", wall_clock.wall_time() - start_wall);
           s.add("kinetic_energy", last_report.kinetic_energy);
+          if (stage.mass_scaling > 1)
+            {
+              s.add("mass_scaling", stage.mass_scaling);
+              s.add("mass_scaling_end_time", mass_scaling_end_time);
+            }
           stage_summaries.add(stage.name, s);
           pcout << "Stage " << stage.name << " ended (" << reason
                 << ") at t = " << current_time << " s after "

@@ -31,6 +31,8 @@ namespace scarp
         &boundary_dissipation &scale_of_energy &last_residual &n_removed;
       ar &current_stage &stage_in_progress &stage_start_time &stage_start_step
         &stage_peak_kinetic &settled_since;
+      ar &inertia_scale &mass_scaling_ended &mass_scaling_end_time
+        &mass_scaling_loss;
       ar &first_damage_time &failure_time &after_failure_taken
                                                             &damage_stage_start;
       ar &stage_summaries                                   &cliff_summary;

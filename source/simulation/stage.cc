@@ -52,28 +52,55 @@ namespace scarp
                         "At the end of the stage, take the current positions "
                         "as the reference for displacements (after gravity "
                         "loading).");
+      prm.declare_entry(
+        "Mass scaling",
+        "1",
+        Patterns::Double(1.),
+        "Multiply the inertia (the nodal masses of the momentum balance, "
+        "not the weight) by this factor: the stable time step grows by its "
+        "square root. For quasi-static phases only (the paper's authors "
+        "loaded gravity and let damage creep with it, then switched to real "
+        "time at the failure); see <Mass scaling until speed> and "
+        "doc/user_guide.md. 1: none.");
+      prm.declare_entry(
+        "Mass scaling until speed",
+        "0",
+        Patterns::Double(0.),
+        "With <Mass scaling> > 1: once a material point moves faster than "
+        "this [m/s], the stage continues in real time (no mass scaling) to "
+        "its end, with the velocities it has; the kinetic energy of the "
+        "extra inertia is booked as dissipated at the switch. Set it well "
+        "above the speeds of the quasi-static phase and below those of the "
+        "failure (the cliff diagnostics' onset speed is 0.1 m/s). 0: mass "
+        "scaling for the whole stage.");
     }
 
 
     void
     Stage::parse_parameters(ParameterHandler &prm)
     {
-      end_time      = prm.get_double("End time");
-      settle        = prm.get_bool("End on kinetic energy");
-      kinetic_ratio = prm.get_double("Kinetic energy ratio");
-      settle_time   = prm.get_double("Settle time");
+      end_time               = prm.get_double("End time");
+      settle                 = prm.get_bool("End on kinetic energy");
+      kinetic_ratio          = prm.get_double("Kinetic energy ratio");
+      settle_time            = prm.get_double("Settle time");
       const std::string type = prm.get("Damping type");
-      damping.type = type == "viscous" ? transfer::Damping::Type::viscous :
-                     type == "local"   ? transfer::Damping::Type::local :
-                                         transfer::Damping::Type::none;
+      damping.type        = type == "viscous" ? transfer::Damping::Type::viscous
+                            : type == "local" ? transfer::Damping::Type::local
+                                              : transfer::Damping::Type::none;
       damping.coefficient = prm.get_double("Damping");
       if (damping.type == transfer::Damping::Type::local &&
           damping.coefficient >= 1.)
         throw ScarpError("Stage " + name +
                          ": local <Damping> must be below 1.");
-      plasticity         = prm.get_bool("Plasticity");
-      damage             = prm.get_bool("Damage");
-      reset_displacement = prm.get_bool("Reset displacement");
+      plasticity             = prm.get_bool("Plasticity");
+      damage                 = prm.get_bool("Damage");
+      reset_displacement     = prm.get_bool("Reset displacement");
+      mass_scaling           = prm.get_double("Mass scaling");
+      mass_scaling_end_speed = prm.get_double("Mass scaling until speed");
+      if (mass_scaling_end_speed > 0 && mass_scaling == 1.)
+        throw ScarpError("Stage " + name +
+                         ": <Mass scaling until speed> is set but <Mass "
+                         "scaling> is 1 (no mass scaling to end).");
     }
   } // namespace simulation
 } // namespace scarp

@@ -452,23 +452,27 @@ namespace scarp
                     m > 0 ? momentum[d].local_element(k) / m : 0.;
                   velocity_old[d].local_element(k) = v;
                   velocity_new[d].local_element(k) =
-                    m > 0 ? v + dt * gravity_for_empty_nodes[d] : 0.;
+                    m > 0 ? v + dt * gravity_for_empty_nodes[d] / mass_scale
+                          : 0.;
                   force[d].local_element(k) = 0;
                 }
               continue;
             }
+          // Mass scaling: the inertia (and with it viscous damping, a rate)
+          // is m_s m; the weight in f is the real one.
+          const double m_inertia = mass_scale * m;
           for (unsigned int d = 0; d < dim; ++d)
             {
               const double v_old  = momentum[d].local_element(k) / m;
               double       f      = force[d].local_element(k);
               double       f_damp = 0;
               if (damping.type == Damping::Type::viscous)
-                f_damp = -damping.coefficient * m * v_old;
+                f_damp = -damping.coefficient * m_inertia * v_old;
               else if (damping.type == Damping::Type::local)
                 f_damp = -damping.coefficient * std::abs(f) *
                          (v_old > 0 ? 1. : (v_old < 0 ? -1. : 0.));
               f += f_damp;
-              const double v_new = v_old + dt * f / m;
+              const double v_new = v_old + dt * f / m_inertia;
               // Keep the damping force: its work is taken after the
               // boundary conditions, with the velocities the nodes have.
               force[d].local_element(k)        = f_damp;
@@ -483,8 +487,9 @@ namespace scarp
           new_ptr[d] = &velocity_new[d];
         }
       grid.boundary_conditions().apply(mass, old_ptr);
+      // The reaction impulses act on the inertia m_s m.
       report.boundary_dissipation +=
-        grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
+        mass_scale * grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
       if (damping.type != Damping::Type::none)
         for (unsigned int k = 0; k < n_owned; ++k)
           if (mass.local_element(k) > node_cutoff[k])

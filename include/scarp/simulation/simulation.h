@@ -297,24 +297,31 @@ namespace scarp
       unsigned int max_steps         = 100000000;
 
       // State of the time loop.
-      double                                       current_time         = 0;
-      double                                       dt                   = 0;
-      unsigned int                                 step                 = 0;
-      unsigned int                                 output_index         = 0;
-      double                                       next_output          = 0;
-      bool                                         outputs_enabled      = true;
-      double                                       initial_energy       = 0;
-      double                                       internal_work        = 0;
-      double                                       damping_dissipation  = 0;
-      double                                       boundary_dissipation = 0;
-      double                                       scale_of_energy      = 0;
-      double                                       last_residual        = 0;
-      double                                       n_removed            = 0;
-      unsigned int                                 current_stage        = 0;
-      double                                       stage_peak_kinetic   = 0;
-      double                                       settled_since        = -1;
-      double                                       last_progress_wall   = -1e9;
-      double                                       first_damage_time    = -1;
+      double       current_time         = 0;
+      double       dt                   = 0;
+      unsigned int step                 = 0;
+      unsigned int output_index         = 0;
+      double       next_output          = 0;
+      bool         outputs_enabled      = true;
+      double       initial_energy       = 0;
+      double       internal_work        = 0;
+      double       damping_dissipation  = 0;
+      double       boundary_dissipation = 0;
+      double       scale_of_energy      = 0;
+      double       last_residual        = 0;
+      double       n_removed            = 0;
+      unsigned int current_stage        = 0;
+      double       stage_peak_kinetic   = 0;
+      double       settled_since        = -1;
+      double       last_progress_wall   = -1e9;
+      double       first_damage_time    = -1;
+      /// Mass scaling of the current step (Stage::mass_scaling while it
+      /// lasts, else 1), whether it has ended in this stage, when, and the
+      /// kinetic energy booked as dissipated at the switches.
+      double                                       inertia_scale      = 1;
+      bool                                         mass_scaling_ended = false;
+      double                                       mass_scaling_end_time = -1;
+      double                                       mass_scaling_loss     = 0;
       transfer::StepReport                         last_report;
       std::unique_ptr<postprocess::StatisticsFile> statistics;
       std::unique_ptr<postprocess::VtuOutput<dim>> vtu;

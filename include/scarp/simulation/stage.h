@@ -20,15 +20,20 @@ namespace scarp
      */
     struct Stage
     {
-      std::string        name;
-      double             end_time           = 1.;
-      bool               settle             = false;
-      double             kinetic_ratio      = 1e-4;
-      double             settle_time        = 0.;
-      transfer::Damping  damping;
-      bool               plasticity         = true;
-      bool               damage             = true;
-      bool               reset_displacement = false;
+      std::string       name;
+      double            end_time      = 1.;
+      bool              settle        = false;
+      double            kinetic_ratio = 1e-4;
+      double            settle_time   = 0.;
+      transfer::Damping damping;
+      bool              plasticity         = true;
+      bool              damage             = true;
+      bool              reset_displacement = false;
+      /// Inertia multiplied by this factor (mass scaling; 1: none).
+      double mass_scaling = 1.;
+      /// Mass scaling ends for the rest of the stage once a point moves
+      /// faster than this [m/s] (0: never).
+      double mass_scaling_end_speed = 0.;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -101,6 +101,17 @@ namespace scarp
         compute_node_cutoffs();
       }
 
+      /// Mass scaling: the inertia of the momentum balance (not the weight)
+      /// is @p scale times the mass. The kinetic energy the step reports is
+      /// that of the real masses; the damping and boundary work are those
+      /// of the scaled system (the forces that act), so its balance holds
+      /// with @p scale times the kinetic energy.
+      void
+      set_mass_scale(const double scale)
+      {
+        mass_scale = scale;
+      }
+
       /**
        * One explicit step of length @p dt. Returns this rank's report (not
        * yet reduced). If @p damage_points is given, points of damage
@@ -203,6 +214,7 @@ namespace scarp
       std::vector<const materials::Material *> materials;
       const TransferParameters                &parameters;
       double                                   mass_cutoff_density = 0;
+      double                                   mass_scale          = 1;
       /// Mass cutoff of each locally owned node (by local index).
       std::vector<double>  node_cutoff;
       const Function<dim> *body_force = nullptr;
