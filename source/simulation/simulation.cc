@@ -936,14 +936,35 @@ namespace scarp
     void
     Simulation<dim>::advance(const Stage &stage)
     {
-      // A change of the mass scaling (its end, or a stage with another)
-      // keeps the velocities: the kinetic energy of the inertia that goes
-      // (or comes) is booked so that the balance stays closed.
       const double scale = (stage.mass_scaling > 1 && !mass_scaling_ended)
                              ? stage.mass_scaling
                              : 1;
-      if (scale != inertia_scale)
+      if (scale > inertia_scale)
         {
+          // Mass scaling begins: the kinetic energy is kept (velocities
+          // times sqrt(old / new)). Keeping the velocities would multiply
+          // the energy of the vibrations left from the previous stage by
+          // m_s, and real time would get it back as m_s times stronger
+          // vibrations when the scaling ends.
+          const double f = std::sqrt(inertia_scale / scale);
+          for (auto &particle : particles)
+            {
+              double *p = particle.get_properties().data();
+              for (unsigned int d = 0; d < dim; ++d)
+                p[layout.velocity + d] *= f;
+              if (layout.has_affine)
+                for (unsigned int i = 0; i < dim * dim; ++i)
+                  p[layout.affine + i] *= f;
+            }
+          last_report.kinetic_energy *= f * f;
+          last_report.max_speed *= f;
+          inertia_scale = scale;
+        }
+      else if (scale < inertia_scale)
+        {
+          // Mass scaling ends: the velocities (the failure's motion) are
+          // kept, and the kinetic energy of the inertia that goes is booked
+          // so that the balance stays closed.
           mass_scaling_loss +=
             (inertia_scale - scale) * last_report.kinetic_energy;
           inertia_scale = scale;
