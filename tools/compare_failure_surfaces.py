@@ -25,6 +25,7 @@ Usage:
 """
 import argparse
 import csv
+import json
 import math
 import sys
 
@@ -59,6 +60,43 @@ def failure_surface(points, criterion, threshold, moved, strip, y_max):
             continue
         surface[k] = min(surface.get(k, math.inf), p["x0"])
     return surface
+
+
+def summary_rows(items):
+    """Rows from each run's summary.json: onset, cost, size."""
+    summaries = []
+    for item in items:
+        directory = item.partition("=")[2]
+        try:
+            with open(f"{directory}/summary.json") as f:
+                summaries.append(json.load(f))
+        except (OSError, ValueError):
+            summaries.append({})
+
+    def row(name, get):
+        cells = []
+        for s in summaries:
+            try:
+                cells.append(get(s))
+            except (KeyError, TypeError, ZeroDivisionError):
+                cells.append("-")
+        print(f"| {name} | " + " | ".join(cells) + " |")
+
+    def collapse(s):
+        return s["stages"]["collapse"]
+
+    row("failure onset [s]",
+        lambda s: f"{s['cliff']['failure_onset_s']:.2f}")
+    row("mass scaling ends [s after the collapse starts]",
+        lambda s: f"{collapse(s)['mass_scaling_end_time'] - collapse(s)['start_time']:.2f}"
+        if collapse(s).get("mass_scaling_end_time", -1) >= 0 else "none")
+    row("material points (end), cells",
+        lambda s: f"{int(s['material_points'])}, {int(s['cells'])}")
+    row("finest cell [m]",
+        lambda s: f"{s['refinement']['finest_cell']:g}"
+        if "refinement" in s else "uniform")
+    row("steps", lambda s: f"{int(s['steps'])}")
+    row("wall time [min]", lambda s: f"{s['wall_time'] / 60:.1f}")
 
 
 def main():
@@ -118,6 +156,7 @@ def main():
                              / max(len(common), 1)))
     print(f"| RMS distance to {runs[-1][0]} [m] | "
           + " | ".join(f"{v:.2f}" for v in rms) + " |")
+    summary_rows(args.runs)
 
     fig, ax = plt.subplots(figsize=(8, 5))
     pts = runs[-1][1]
