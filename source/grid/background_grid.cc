@@ -225,7 +225,7 @@ namespace scarp
       hanging_node_constraints.reinit(relevant_dofs);
       DoFTools::make_hanging_node_constraints(dofs, hanging_node_constraints);
       hanging_node_constraints.close();
-      boundary.setup(dofs);
+      boundary.setup(dofs, box);
     }
 
 

@@ -1,9 +1,13 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
 #include <scarp/grid/boundary_conditions.h>
 
+#include <cmath>
 #include <map>
+#include <sstream>
 
 namespace scarp
 {
@@ -13,8 +17,8 @@ namespace scarp
     std::string
     BoundaryConditions<dim>::face_name(const unsigned int face)
     {
-      static const char *names[] = {"Left", "Right", "Bottom", "Top", "Front",
-                                    "Back"};
+      static const char *names[] = {
+        "Left", "Right", "Bottom", "Top", "Front", "Back"};
       return names[face];
     }
 
@@ -40,6 +44,38 @@ namespace scarp
                         Patterns::Double(0.),
                         "Coulomb friction coefficient [-] of faces of type "
                         "friction.");
+      prm.enter_subsection("Prescribed velocity");
+      prm.declare_entry(
+        "Face",
+        "none",
+        Patterns::Selection(dim == 2 ? "none|Left|Right|Bottom|Top"
+                                     : "none|Left|Right|Bottom|Top|Front|Back"),
+        "Face of the background box on which a region moves with a "
+        "prescribed constant velocity (a rigid footing or plate), or none. "
+        "Inside the region this replaces the face's own condition; the force "
+        "the material exerts on the region is written to statistics.csv "
+        "(reaction_x, reaction_y[, reaction_z]).");
+      prm.declare_entry(
+        "Region",
+        "",
+        Patterns::Anything(),
+        "Two opposite corners x0, y0[, z0], x1, y1[, z1] of a box: the nodes "
+        "of <Face> inside it (closed, to 1e-9 of the box size) have the "
+        "prescribed velocity. The box must reach the face and hold at least "
+        "one node of it. Empty: the whole face.");
+      prm.declare_entry("Velocity",
+                        dim == 2 ? "0, 0" : "0, 0, 0",
+                        *ParameterTools::double_list(dim),
+                        "The prescribed velocity [m/s], constant in time.");
+      prm.declare_entry(
+        "Components",
+        "all",
+        Patterns::Selection("all|normal"),
+        "all: every velocity component of the region's nodes is prescribed "
+        "(a rough plate, no slip); normal: only the component normal to "
+        "<Face> (a smooth plate, the tangential velocity is free; the "
+        "tangential components of <Velocity> must then be zero).");
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -57,18 +93,157 @@ namespace scarp
       for (unsigned int f = 0; f < 2 * dim; ++f)
         types[f] = by_name.at(prm.get(face_name(f)));
       friction_coefficient = prm.get_double("Friction coefficient");
+      prm.enter_subsection("Prescribed velocity");
+      const std::string where =
+        "Mesh/Boundary conditions/Prescribed velocity: ";
+      prescribed_face = numbers::invalid_unsigned_int;
+      for (unsigned int f = 0; f < 2 * dim; ++f)
+        if (prm.get("Face") == face_name(f))
+          prescribed_face = f;
+      prescribed_velocity = ParameterTools::get_vector<dim>(prm, "Velocity");
+      normal_only         = prm.get("Components") == "normal";
+      region_corners.clear();
+      {
+        std::string text = prm.get("Region");
+        for (char &c : text)
+          if (c == ',')
+            c = ' ';
+        std::istringstream in(text);
+        double             x;
+        while (in >> x)
+          region_corners.push_back(x);
+        if (!in.eof() ||
+            (!region_corners.empty() && region_corners.size() != 2 * dim))
+          throw ScarpError(where + "<Region> (" + prm.get("Region") +
+                           ") must be empty or " + std::to_string(2 * dim) +
+                           " numbers: two opposite corners of a box.");
+      }
+      if (has_prescribed_velocity() && normal_only)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (d != prescribed_face / 2 && prescribed_velocity[d] != 0)
+            throw ScarpError(
+              where +
+              "<Components> = normal prescribes only the velocity "
+              "normal to the " +
+              face_name(prescribed_face) + " face, but <Velocity> has " +
+              std::to_string(prescribed_velocity[d]) + " in direction " +
+              std::to_string(d) +
+              " (tangential); set it to 0 or use <Components> = all.");
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
 
     template <int dim>
+    std::vector<std::string>
+    BoundaryConditions<dim>::reaction_column_names() const
+    {
+      if (!has_prescribed_velocity())
+        return {};
+      std::vector<std::string> names{"reaction_x", "reaction_y"};
+      if (dim == 3)
+        names.push_back("reaction_z");
+      return names;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::take_reaction(const MPI_Comm communicator) const
+    {
+      Tensor<1, dim> impulse;
+      for (unsigned int d = 0; d < dim; ++d)
+        impulse[d] = Utilities::MPI::sum(reaction_impulse[d], communicator);
+      // Every rank takes the same steps: its own time is the time.
+      const double time = reaction_time;
+      reaction_impulse  = Tensor<1, dim>();
+      reaction_time     = 0;
+      // The material pushes on the region with minus the impulse the region
+      // gave it.
+      return time > 0 ? -impulse / time : Tensor<1, dim>();
+    }
+
+
+    template <int dim>
     void
-    BoundaryConditions<dim>::setup(const DoFHandler<dim> &dof_handler)
+    BoundaryConditions<dim>::setup(const DoFHandler<dim>  &dof_handler,
+                                   const BoundingBox<dim> &box)
     {
       const IndexSet &owned = dof_handler.locally_owned_dofs();
       std::map<types::global_dof_index, unsigned int> faces_of_dof;
-      std::vector<types::global_dof_index> face_dofs(
+      std::vector<types::global_dof_index>            face_dofs(
         dof_handler.get_fe().n_dofs_per_face());
+
+      // The prescribed region: a closed box (the whole face when no region
+      // is given), checked against the mesh box and the other faces.
+      const std::string where =
+        "Mesh/Boundary conditions/Prescribed velocity: ";
+      Point<dim> region_lower = box.get_boundary_points().first;
+      Point<dim> region_upper = box.get_boundary_points().second;
+      double     tolerance    = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        tolerance = std::max(tolerance, 1e-9 * box.side_length(d));
+      if (has_prescribed_velocity())
+        {
+          const unsigned int axis = prescribed_face / 2;
+          const double       face_x =
+            prescribed_face % 2 ? region_upper[axis] : region_lower[axis];
+          if (!region_corners.empty())
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                region_lower[d] =
+                  std::min(region_corners[d], region_corners[dim + d]);
+                region_upper[d] =
+                  std::max(region_corners[d], region_corners[dim + d]);
+              }
+          if (face_x < region_lower[axis] - tolerance ||
+              face_x > region_upper[axis] + tolerance)
+            {
+              std::ostringstream m;
+              m << where << "<Region> spans " << region_lower[axis] << " to "
+                << region_upper[axis] << " in direction " << axis
+                << ", so it does not lie on the " << face_name(prescribed_face)
+                << " face (at " << face_x << "); the box must contain it.";
+              throw ScarpError(m.str());
+            }
+          // Faces the region reaches at its edges keep their own condition
+          // there, applied first; a prescribed component they forbid is a
+          // contradiction.
+          for (unsigned int g = 0; g < 2 * dim; ++g)
+            {
+              if (g / 2 == axis || types[g] == BoundaryType::free)
+                continue;
+              const unsigned int a = g / 2;
+              const double g_x     = g % 2 ? box.get_boundary_points().second[a]
+                                           : box.get_boundary_points().first[a];
+              if (g_x < region_lower[a] - tolerance ||
+                  g_x > region_upper[a] + tolerance)
+                continue;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const bool prescribed = !normal_only || d == axis;
+                  const bool forbidden =
+                    types[g] == BoundaryType::fixed || d == a;
+                  if (prescribed && forbidden && prescribed_velocity[d] != 0)
+                    {
+                      std::ostringstream m;
+                      m << where << "the region reaches the " << face_name(g)
+                        << " face, which is "
+                        << (types[g] == BoundaryType::fixed
+                              ? "fixed (no velocity)"
+                              : (types[g] == BoundaryType::slip
+                                   ? "slip (no normal velocity)"
+                                   : "friction (no normal velocity into it)"))
+                        << ", but <Velocity> prescribes "
+                        << prescribed_velocity[d] << " in direction " << d
+                        << " there; make the region end before that face or "
+                           "change its condition.";
+                      throw ScarpError(m.str());
+                    }
+                }
+            }
+        }
+      unsigned int n_region_nodes = 0;
       // Ghost cells too: a node owned here may only touch a ghost cell's face.
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (!cell->is_artificial() && cell->at_boundary())
@@ -76,6 +251,22 @@ namespace scarp
             if (cell->face(f)->at_boundary())
               {
                 const unsigned int id = cell->face(f)->boundary_id();
+                if (id == prescribed_face)
+                  {
+                    // FE_Q(1): one dof per vertex, in vertex order.
+                    const auto face = cell->face(f);
+                    for (const unsigned int v : face->vertex_indices())
+                      {
+                        const auto  dof = face->vertex_dof_index(v, 0);
+                        const auto &x   = face->vertex(v);
+                        bool        in  = true;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          in = in && x[d] >= region_lower[d] - tolerance &&
+                               x[d] <= region_upper[d] + tolerance;
+                        if (in && owned.is_element(dof))
+                          faces_of_dof[dof] |= prescribed_bit;
+                      }
+                  }
                 if (types[id] == BoundaryType::free)
                   continue;
                 cell->face(f)->get_dof_indices(face_dofs);
@@ -83,6 +274,19 @@ namespace scarp
                   if (owned.is_element(dof))
                     faces_of_dof[dof] |= (1u << id);
               }
+      for (const auto &[dof, faces] : faces_of_dof)
+        if (faces & prescribed_bit)
+          ++n_region_nodes;
+      if (has_prescribed_velocity() &&
+          Utilities::MPI::sum(n_region_nodes, dof_handler.get_communicator()) ==
+            0)
+        {
+          std::ostringstream m;
+          m << where << "<Region> holds no node of the "
+            << face_name(prescribed_face)
+            << " face; make it reach at least one mesh node.";
+          throw ScarpError(m.str());
+        }
       nodes.clear();
       for (const auto &[dof, faces] : faces_of_dof)
         nodes.push_back({dof, faces});
@@ -95,7 +299,10 @@ namespace scarp
     BoundaryConditions<dim>::apply(
       const VectorType                    &mass,
       std::array<VectorType *, dim>        velocity,
-      const std::array<VectorType *, dim> *start_velocity) const
+      const std::array<VectorType *, dim> *start_velocity,
+      const double                         dt,
+      const std::array<VectorType *, dim> *damping_force,
+      const double                         mass_scale) const
     {
       double removed = 0.;
       for (const Node &node : nodes)
@@ -122,7 +329,7 @@ namespace scarp
                         const double v_normal = sign * v[axis];
                         if (v_normal > 0) // moving into the face
                           {
-                            v[axis] = 0;
+                            v[axis]                   = 0;
                             const double v_tangential = v.norm();
                             if (v_tangential > 0)
                               v *= std::max(0.,
@@ -135,6 +342,21 @@ namespace scarp
                       break;
                   }
               }
+          if (node.faces & prescribed_bit)
+            {
+              const unsigned int axis = prescribed_face / 2;
+              for (unsigned int d = 0; d < dim; ++d)
+                if (!normal_only || d == axis)
+                  {
+                    if (start_velocity)
+                      reaction_impulse[d] +=
+                        mass_scale * mass(node.dof) *
+                          (prescribed_velocity[d] - v_free[d]) +
+                        (damping_force ? dt * (*(*damping_force)[d])(node.dof)
+                                       : 0.);
+                    v[d] = prescribed_velocity[d];
+                  }
+            }
           for (unsigned int d = 0; d < dim; ++d)
             (*velocity[d])(node.dof) = v[d];
           if (start_velocity)
@@ -145,6 +367,8 @@ namespace scarp
               removed += mass(node.dof) * ((v_free - v) * (v_start + v)) / 2;
             }
         }
+      if (start_velocity)
+        reaction_time += dt;
       return removed;
     }
 
@@ -154,10 +378,16 @@ namespace scarp
     template double
     BoundaryConditions<2>::apply(const Vector &,
                                  std::array<Vector *, 2>,
-                                 const std::array<Vector *, 2> *) const;
+                                 const std::array<Vector *, 2> *,
+                                 double,
+                                 const std::array<Vector *, 2> *,
+                                 double) const;
     template double
     BoundaryConditions<3>::apply(const Vector &,
                                  std::array<Vector *, 3>,
-                                 const std::array<Vector *, 3> *) const;
+                                 const std::array<Vector *, 3> *,
+                                 double,
+                                 const std::array<Vector *, 3> *,
+                                 double) const;
   } // namespace grid
 } // namespace scarp

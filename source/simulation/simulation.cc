@@ -1183,6 +1183,12 @@ namespace scarp
           reference_norm_max   = std::max(reference_norm_max, norm);
           row.push_back(e);
         }
+      if (grid.boundary_conditions().has_prescribed_velocity())
+        {
+          const auto f = grid.boundary_conditions().take_reaction(communicator);
+          for (unsigned int d = 0; d < dim; ++d)
+            row.push_back(f[d]);
+        }
       statistics->write_row(row);
     }
 
@@ -1353,6 +1359,9 @@ namespace scarp
                                        "wall_time"};
       if (reference_displacement)
         columns.push_back("reference_error");
+      for (const auto &name :
+           grid.boundary_conditions().reaction_column_names())
+        columns.push_back(name);
       // Resumed: statistics.csv and the PVD files as they were at the
       // checkpoint (the rows and outputs after it drop out), then appended.
       statistics = std::make_unique<postprocess::StatisticsFile>(

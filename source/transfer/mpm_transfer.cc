@@ -480,16 +480,18 @@ namespace scarp
               velocity_new[d].local_element(k) = v_new;
             }
         }
-      std::array<Vector *, dim> old_ptr, new_ptr;
+      std::array<Vector *, dim> old_ptr, new_ptr, damp_ptr;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          old_ptr[d] = &velocity_old[d];
-          new_ptr[d] = &velocity_new[d];
+          old_ptr[d]  = &velocity_old[d];
+          new_ptr[d]  = &velocity_new[d];
+          damp_ptr[d] = &force[d]; // holds the damping force here
         }
       grid.boundary_conditions().apply(mass, old_ptr);
       // The reaction impulses act on the inertia m_s m.
       report.boundary_dissipation +=
-        mass_scale * grid.boundary_conditions().apply(mass, new_ptr, &old_ptr);
+        mass_scale * grid.boundary_conditions().apply(
+                       mass, new_ptr, &old_ptr, dt, &damp_ptr, mass_scale);
       if (damping.type != Damping::Type::none)
         for (unsigned int k = 0; k < n_owned; ++k)
           if (mass.local_element(k) > node_cutoff[k])

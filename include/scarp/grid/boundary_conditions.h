@@ -1,6 +1,7 @@
 #ifndef scarp_grid_boundary_conditions_h
 #define scarp_grid_boundary_conditions_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
@@ -32,6 +33,15 @@ namespace scarp
      *
      * Faces are numbered as deal.II's colorized hyper_rectangle: 2*d is the
      * lower face in direction d, 2*d+1 the upper one.
+     *
+     * Optionally a part of one face (the nodes of the face inside a box,
+     * `subsection Prescribed velocity`) moves with a prescribed constant
+     * velocity: all of its components (a rough rigid plate) or only the
+     * normal one (a smooth plate). Inside the region this replaces the
+     * face's own condition. The force the material exerts on the region
+     * (the reaction, e.g. the load on a footing) is accumulated from the
+     * constraint impulses m (v_free - v_prescribed) of its nodes and
+     * reported averaged over the steps since it was last asked for.
      */
     template <int dim>
     class BoundaryConditions
@@ -42,9 +52,13 @@ namespace scarp
       void
       parse_parameters(ParameterHandler &prm);
 
-      /// Record which locally owned degrees of freedom lie on which faces.
+      /// Record which locally owned degrees of freedom lie on which faces
+      /// of the mesh box @p box, and which in the prescribed-velocity
+      /// region. Throws a ScarpError (on every rank) when the region does
+      /// not lie on its face, holds no node of it, or contradicts the
+      /// condition of a face it touches.
       void
-      setup(const DoFHandler<dim> &dof_handler);
+      setup(const DoFHandler<dim> &dof_handler, const BoundingBox<dim> &box);
 
       /**
        * Apply the conditions to the nodal velocity components @p velocity
@@ -53,14 +67,42 @@ namespace scarp
        * step) is given, returns the energy the boundary removed over the
        * step: the work of the reaction impulse m (v_free - v) against the
        * mean velocity (v_start + v)/2; it is zero on fixed and slip faces
-       * and the friction loss on friction faces.
+       * and the friction loss on friction faces. The call with
+       * @p start_velocity also adds the step (of length @p dt) to the
+       * reaction on the prescribed region; @p damping_force (the grid
+       * damping force included in @p velocity) is taken out of it: damping
+       * is a numerical force of the grid, not one the material exerts. With
+       * mass scaling the nodes' inertia is @p mass_scale times @p mass.
        */
       template <typename VectorType>
       double
       apply(const VectorType                    &mass,
             std::array<VectorType *, dim>        velocity,
-            const std::array<VectorType *, dim> *start_velocity = nullptr)
-        const;
+            const std::array<VectorType *, dim> *start_velocity = nullptr,
+            const double                         dt             = 0,
+            const std::array<VectorType *, dim> *damping_force  = nullptr,
+            const double                         mass_scale     = 1) const;
+
+      /// Whether a part of a face has a prescribed velocity.
+      bool
+      has_prescribed_velocity() const
+      {
+        return prescribed_face != numbers::invalid_unsigned_int;
+      }
+
+      /// Names of the statistics columns of the reaction on the prescribed
+      /// region (none without one): reaction_x, reaction_y[, reaction_z].
+      std::vector<std::string>
+      reaction_column_names() const;
+
+      /**
+       * The force the material exerted on the prescribed region [N; N/m in
+       * 2D plane strain], averaged over the steps applied (with their dt)
+       * since the previous call, summed over all ranks; resets the
+       * average. Zero when no step was taken since. Collective.
+       */
+      Tensor<1, dim>
+      take_reaction(const MPI_Comm communicator) const;
 
       BoundaryType
       type(const unsigned int face) const
@@ -78,9 +120,24 @@ namespace scarp
         unsigned int            faces; ///< bit f set: node lies on face f
       };
 
+      /// Bit of Node::faces that marks a node of the prescribed region.
+      static constexpr unsigned int prescribed_bit = 1u << (2 * dim);
+
       std::array<BoundaryType, 2 * dim> types;
       double                            friction_coefficient = 0.;
       std::vector<Node>                 nodes;
+
+      /// The prescribed-velocity region: face (invalid: none), box of its
+      /// nodes, velocity, whether only the normal component is prescribed.
+      unsigned int        prescribed_face = numbers::invalid_unsigned_int;
+      std::vector<double> region_corners; ///< empty: the whole face
+      Tensor<1, dim>      prescribed_velocity;
+      bool                normal_only = false;
+
+      /// Impulse the region gave the material, and the time it was summed
+      /// over (apply() is const: the grid update only reads the conditions).
+      mutable Tensor<1, dim> reaction_impulse;
+      mutable double         reaction_time = 0;
     };
   } // namespace grid
 } // namespace scarp
