@@ -3,23 +3,25 @@
 # plate pushed into an elastic layer against the closed form (1 rank, or on
 # 2 ranks with RANKS 2), and the refusals of regions and velocities that
 # cannot be applied. Arguments: scarp, source dir, run dir, mpiexec, mpi
-# flags, then the number of ranks.
+# flags, then the number of ranks and the dimension (2 or 3).
 set -uo pipefail
 scarp="$1"; src="$2"; run="$3"; mpiexec="${4:-}"; flags="${5:-}"; flags="${flags//;/ }"
-ranks="${6:-1}"
+ranks="${6:-1}"; dim="${7:-2}"
 here="$src/tests/boundary"
 rm -rf "$run"; mkdir -p "$run"; cd "$run"
 failures=0
 
+scene=plate_compression; thickness=""
+[ "$dim" -eq 3 ] && { scene=plate_compression_3d; thickness=0.4; }
 if [ "$ranks" -gt 1 ]; then
-  $mpiexec $flags -np "$ranks" "$scarp" "$here/plate_compression.prm" > plate.log 2>&1
+  $mpiexec $flags -np "$ranks" "$scarp" "$here/$scene.prm" > plate.log 2>&1
 else
-  "$scarp" "$here/plate_compression.prm" > plate.log 2>&1
+  "$scarp" "$here/$scene.prm" > plate.log 2>&1
 fi
 if [ $? -ne 0 ]; then
   echo "FAIL: the plate run failed"; tail -5 plate.log; exit 1
 fi
-/usr/bin/python3 "$here/check_plate_compression.py" plate_compression || failures=$((failures + 1))
+/usr/bin/python3 "$here/check_plate_compression.py" $scene $thickness || failures=$((failures + 1))
 
 # expect NAME LINE LINES...: the scene with the lines appended must stop
 # before any step with exit status 1 and exactly the message LINE.
@@ -36,7 +38,7 @@ expect() {
     failures=$((failures + 1))
   fi
 }
-if [ "$ranks" -eq 1 ]; then
+if [ "$ranks" -eq 1 ] && [ "$dim" -eq 2 ]; then
   pv="subsection Mesh
 subsection Boundary conditions
 subsection Prescribed velocity"
