@@ -24,9 +24,9 @@ ratio = sum(q) / len(q) / (c * nc)
 print("N_c = %.4f, limit load q/c = %.3f over %d rows, q / (c N_c) = %.4f"
       % (nc, sum(q) / len(q) / c, len(q), ratio))
 # Tolerance 25 %, from what the example measures (doc/examples.md): at
-# cells of 0.1 m (5 under the half footing) q/(c N_c) = 1.21; at 0.05 m
-# 1.10 (first plateau), so the error halves with h and extrapolates to
-# 0.99. Part of it is the footing's edge: the last prescribed node at
+# cells of 0.1 m (5 under the half footing) q/(c N_c) = 1.21 over this
+# window and 1.19 on the plateau (0.4 to 0.9 % of B); at 0.05 m 1.10 on the
+# plateau, so the error halves with h and extrapolates to 1.01. Part of it is the footing's edge: the last prescribed node at
 # x = B/2 carries half a cell beyond it (up to h/B = 10 % here). A
 # reaction off by a factor (the whole footing instead of half, the damping
 # force counted, a missing dt) or a strength parameter not honoured
