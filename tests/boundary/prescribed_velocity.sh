@@ -12,7 +12,7 @@ rm -rf "$run"; mkdir -p "$run"; cd "$run"
 failures=0
 
 scene=plate_compression; thickness=""
-[ "$dim" -eq 3 ] && { scene=plate_compression_3d; thickness=0.4; }
+[ "$dim" -eq 3 ] && { scene=plate_compression_3d; thickness=0.2; }
 if [ "$ranks" -gt 1 ]; then
   $mpiexec $flags -np "$ranks" "$scarp" "$here/$scene.prm" > plate.log 2>&1
 else
