@@ -73,6 +73,14 @@ namespace scarp
         "above the speeds of the quasi-static phase and below those of the "
         "failure (the cliff diagnostics' onset speed is 0.1 m/s). 0: mass "
         "scaling for the whole stage.");
+      prm.declare_entry(
+        "Mass scaling until volume",
+        "0",
+        Patterns::Double(0.),
+        "With <Mass scaling until speed>: the points faster than that speed "
+        "must hold more than this reference volume [m^2 in 2D, m^3 in 3D] "
+        "for the mass scaling to end (a flake of a few points at a notch "
+        "does not end it). 0: one point is enough.");
     }
 
 
@@ -92,11 +100,12 @@ namespace scarp
           damping.coefficient >= 1.)
         throw ScarpError("Stage " + name +
                          ": local <Damping> must be below 1.");
-      plasticity             = prm.get_bool("Plasticity");
-      damage                 = prm.get_bool("Damage");
-      reset_displacement     = prm.get_bool("Reset displacement");
-      mass_scaling           = prm.get_double("Mass scaling");
-      mass_scaling_end_speed = prm.get_double("Mass scaling until speed");
+      plasticity              = prm.get_bool("Plasticity");
+      damage                  = prm.get_bool("Damage");
+      reset_displacement      = prm.get_bool("Reset displacement");
+      mass_scaling            = prm.get_double("Mass scaling");
+      mass_scaling_end_speed  = prm.get_double("Mass scaling until speed");
+      mass_scaling_end_volume = prm.get_double("Mass scaling until volume");
       if (mass_scaling_end_speed > 0 && mass_scaling == 1.)
         throw ScarpError("Stage " + name +
                          ": <Mass scaling until speed> is set but <Mass "

@@ -199,6 +199,11 @@ namespace scarp
       rebalance_if_needed();
       void
       advance(const Stage &stage);
+      /// The reference volume of the points faster than @p speed (all
+      /// ranks; collective): the onset of a failure and the end of mass
+      /// scaling need more than a point or two (a flake at the notch).
+      double
+      fast_volume(const double speed) const;
       void
       nonlocal_damage_step(const Stage &stage);
       void
@@ -328,9 +333,10 @@ namespace scarp
       postprocess::JsonObject                      stage_summaries;
       postprocess::CliffDiagnostics                cliff_diagnostics;
       postprocess::JsonObject                      cliff_summary;
-      const scenes::CliffProfile                  *cliff         = nullptr;
-      double                                       failure_speed = 0.1;
-      double                                       failure_time  = -1;
+      const scenes::CliffProfile                  *cliff          = nullptr;
+      double                                       failure_speed  = 0.1;
+      double                                       failure_volume = 0;
+      double                                       failure_time   = -1;
       /// Snapshot "after_failure" this long after the onset [s] (< 0: none);
       /// compares failure surfaces across resolutions at one stage of motion.
       double after_failure_delay = 1.;

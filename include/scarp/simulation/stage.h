@@ -34,6 +34,8 @@ namespace scarp
       /// Mass scaling ends for the rest of the stage once a point moves
       /// faster than this [m/s] (0: never).
       double mass_scaling_end_speed = 0.;
+      /// ... and the points faster than that hold more than this volume.
+      double mass_scaling_end_volume = 0.;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -1,0 +1,128 @@
+// Simulation: the cliff snapshots (points gathered on rank 0, written as
+// CSV; at the end the profile and the cliff diagnostics).
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/grid/refinement_marker.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/material_factory.h>
+#include <scarp/particles/body_seeder.h>
+#include <scarp/scenes/shape_factory.h>
+#include <scarp/simulation/simulation.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+
+    template <int dim>
+    std::vector<postprocess::CliffDiagnostics::Particle>
+    Simulation<dim>::gather_cliff_points() const
+    {
+      std::vector<double> local;
+      for (const auto &particle : particles)
+        {
+          const double *p = particle.get_properties().data();
+          if (!bodies[static_cast<unsigned int>(p[layout.body_id])].cliff)
+            continue;
+          const auto &m =
+            *materials[static_cast<unsigned int>(p[layout.material_id])];
+          const Point<dim> x = particle.get_location();
+          const double     J =
+            determinant(layout.get_matrix(p, layout.deformation_gradient));
+          local.insert(local.end(),
+                       {x[0],
+                        x[1],
+                        p[layout.reference_position],
+                        p[layout.reference_position + 1],
+                        p[layout.reference_volume] * J,
+                        m.damage(p + layout.state)});
+        }
+      const auto all = Utilities::MPI::gather(communicator, local, 0);
+      std::vector<postprocess::CliffDiagnostics::Particle> points;
+      for (const auto &chunk : all)
+        for (std::size_t k = 0; k + 5 < chunk.size(); k += 6)
+          {
+            postprocess::CliffDiagnostics::Particle q;
+            q.position         = Point<2>(chunk[k], chunk[k + 1]);
+            q.initial_position = Point<2>(chunk[k + 2], chunk[k + 3]);
+            q.volume           = chunk[k + 4];
+            q.damage           = chunk[k + 5];
+            points.push_back(q);
+          }
+      return points;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::cliff_snapshot(const std::string &tag)
+    {
+      if (!outputs_enabled || !cliff || dim != 2)
+        return;
+      TimerOutput::Scope scope(timer, "cliff diagnostics");
+      const auto         points = gather_cliff_points();
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      postprocess::CliffDiagnostics::write_particles_csv(
+        output_directory + "/cliff_" + tag + "_particles.csv", points);
+      if (tag != "end")
+        return;
+      const auto profile =
+        cliff_diagnostics.surface_profile(points,
+                                          cliff->get_parameters().beach_level,
+                                          grid.domain().lower_bound(0),
+                                          grid.domain().upper_bound(0));
+      const auto r = cliff_diagnostics.analyse(profile, points, *cliff);
+      postprocess::CliffDiagnostics::write_profile_csv(
+        output_directory + "/cliff_profile.csv", profile, &r);
+      const double onset =
+        failure_time >= 0 ? failure_time - damage_stage_start : -1;
+      cliff_summary.add("debris_angle_deg", r.debris_angle);
+      cliff_summary.add("run_out_m", r.run_out);
+      cliff_summary.add("debris_toe_x_m", r.debris_toe);
+      cliff_summary.add("failed_area_m2", r.failed_area);
+      cliff_summary.add("scarp_position_x_m", r.scarp_position);
+      cliff_summary.add("scarp_retreat_m", r.scarp_retreat);
+      cliff_summary.add("failure_onset_s", onset);
+      cliff_summary.add("max_damage", last_report.max_damage);
+      cliff_summary.add("dissipated_energy_J",
+                        last_report.plastic_dissipation +
+                          last_report.damage_dissipation);
+      cliff_summary.add("plastic_dissipation_J",
+                        last_report.plastic_dissipation);
+      cliff_summary.add("damage_dissipation_J", last_report.damage_dissipation);
+      std::ostringstream s;
+      s << std::setprecision(4) << "Cliff: debris angle " << r.debris_angle
+        << " deg, run-out " << r.run_out << " m, failed area " << r.failed_area
+        << " m^2, scarp at x = " << r.scarp_position << " m, failure onset "
+        << onset << " s after the start of damage, "
+        << "max damage " << last_report.max_damage << ", dissipated "
+        << last_report.plastic_dissipation + last_report.damage_dissipation
+        << " J/m";
+      std::cout << s.str() << std::endl;
+    }
+
+
+    // Instantiations (the other members are in the other
+    // simulation_*.cc files).
+    template std::vector<postprocess::CliffDiagnostics::Particle>
+    Simulation<2>::gather_cliff_points() const;
+    template std::vector<postprocess::CliffDiagnostics::Particle>
+    Simulation<3>::gather_cliff_points() const;
+    template void
+    Simulation<2>::cliff_snapshot(const std::string &tag);
+    template void
+    Simulation<3>::cliff_snapshot(const std::string &tag);
+  } // namespace simulation
+} // namespace scarp

@@ -1,0 +1,278 @@
+// Simulation: what a run reports (VTU output, statistics.csv, the
+// progress line, summary.json, the error against a reference solution).
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/grid/refinement_marker.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/material_factory.h>
+#include <scarp/particles/body_seeder.h>
+#include <scarp/scenes/shape_factory.h>
+#include <scarp/simulation/simulation.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+    namespace
+    {
+      std::string
+      format_seconds(const double s)
+      {
+        const long         t = static_cast<long>(s + 0.5);
+        std::ostringstream o;
+        o << std::setfill('0') << std::setw(2) << t / 3600 << ":"
+          << std::setw(2) << (t / 60) % 60 << ":" << std::setw(2) << t % 60;
+        return o.str();
+      }
+    } // namespace
+
+
+    template <int dim>
+    double
+    Simulation<dim>::reference_error(double *norm) const
+    {
+      if (!reference_displacement)
+        return -1;
+      reference_displacement->set_time(current_time);
+      double sums[3] = {0, 0, 0};
+      for (const auto &particle : particles)
+        {
+          const double    *p = particle.get_properties().data();
+          const Point<dim> X(layout.get_vector(p, layout.reference_position));
+          const double     V0 = p[layout.reference_volume];
+          double           e2 = 0, u2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double u = reference_displacement->value(X, d);
+              const double e = particle.get_location()[d] - X[d] - u;
+              e2 += e * e;
+              u2 += u * u;
+            }
+          sums[0] += V0 * e2;
+          sums[1] += V0 * u2;
+          sums[2] += V0;
+        }
+      Utilities::MPI::sum(ArrayView<const double>(sums, 3),
+                          communicator,
+                          ArrayView<double>(sums, 3));
+      if (norm)
+        *norm = std::sqrt(sums[1] / std::max(sums[2], 1e-300));
+      return std::sqrt(sums[0] / std::max(sums[2], 1e-300));
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_output()
+    {
+      if (!outputs_enabled)
+        return;
+      TimerOutput::Scope scope(timer, "output");
+      vtu->write_particles(particles, layout, current_time, output_index);
+      if (write_mesh_files)
+        vtu->write_mesh(grid,
+                        mpm->nodal_mass(),
+                        mpm->nodal_velocity(),
+                        current_time,
+                        output_index);
+      ++output_index;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_statistics(const transfer::StepReport &r,
+                                      const Stage                &stage)
+    {
+      (void)stage;
+      if (!statistics)
+        return;
+      const double material_dissipation = internal_work - r.stored_energy;
+      std::vector<double> row({double(step),
+                               current_time,
+                               dt,
+                               double(current_stage),
+                               r.kinetic_energy,
+                               r.stored_energy,
+                               r.gravitational_energy,
+                               internal_work,
+                               damping_dissipation,
+                               boundary_dissipation,
+                               r.plastic_dissipation,
+                               r.damage_dissipation,
+                               material_dissipation,
+                               last_residual,
+                               r.momentum[0],
+                               r.momentum[1],
+                               r.momentum[2],
+                               r.angular_momentum[0],
+                               r.angular_momentum[1],
+                               r.angular_momentum[2],
+                               r.n_points,
+                               r.mass,
+                               r.max_speed,
+                               r.max_damage,
+                               r.damaged_volume,
+                               wall_clock.wall_time()});
+      if (reference_displacement)
+        {
+          double       norm    = 0;
+          const double e       = reference_error(&norm);
+          reference_error_last = e;
+          reference_error_max  = std::max(reference_error_max, e);
+          reference_norm_max   = std::max(reference_norm_max, norm);
+          row.push_back(e);
+        }
+      if (grid.boundary_conditions().has_prescribed_velocity())
+        {
+          const auto f = grid.boundary_conditions().take_reaction(communicator);
+          for (unsigned int d = 0; d < dim; ++d)
+            row.push_back(f[d]);
+        }
+      statistics->write_row(row);
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::print_progress(const transfer::StepReport &r,
+                                    const Stage                &stage,
+                                    const bool                  force)
+    {
+      const double wall = wall_clock.wall_time();
+      if (!force && wall - last_progress_wall < 2.)
+        return;
+      last_progress_wall = wall;
+      const double done  = current_time / stages.back().end_time;
+      const double eta   = done > 0 ? wall * (1 - done) / done : 0;
+      pcout << "  " << std::setw(8) << stage.name << "  step " << std::setw(7)
+            << step << "  t = " << std::setw(10) << std::setprecision(5)
+            << current_time << " s  dt = " << std::setw(9)
+            << std::setprecision(3) << dt << " s  E_kin = " << std::setw(10)
+            << r.kinetic_energy << " J  max d = " << std::setw(5)
+            << std::setprecision(3) << r.max_damage << "  wall "
+            << format_seconds(wall) << "  ETA <= " << format_seconds(eta)
+            << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_summary(const std::string &how_it_ended)
+    {
+      if (!outputs_enabled ||
+          Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      postprocess::JsonObject summary;
+      summary.add("ended", how_it_ended);
+      summary.add("dimension", double(dim));
+      summary.add("mpi_ranks",
+                  double(Utilities::MPI::n_mpi_processes(communicator)));
+      summary.add("steps", double(step));
+      summary.add("load_rebalances", double(n_rebalances));
+      if (grid.adaptive_refinement)
+        {
+          postprocess::JsonObject refinement;
+          refinement.add("checks", double(n_refinement_checks));
+          refinement.add("passes", double(n_refinement_passes));
+          refinement.add("points_split", double(n_split));
+          refinement.add("finest_cell", grid.minimum_cell_size());
+          summary.add("refinement", refinement);
+        }
+      summary.add("time", current_time);
+      summary.add("material_points", last_report.n_points);
+      summary.add("cells",
+                  double(grid.triangulation().n_global_active_cells()));
+      summary.add("wall_time", wall_clock.wall_time());
+      const double point_steps = last_report.n_points * step;
+      summary.add("particle_steps_per_second",
+                  point_steps / std::max(wall_clock.wall_time(), 1e-9));
+      postprocess::JsonObject energies;
+      energies.add("kinetic", last_report.kinetic_energy);
+      energies.add("strain", last_report.stored_energy);
+      energies.add("gravitational", last_report.gravitational_energy);
+      energies.add("internal_work", internal_work);
+      energies.add("damping_dissipation", damping_dissipation);
+      if (mass_scaling_loss != 0)
+        energies.add("mass_scaling_dissipation", mass_scaling_loss);
+      energies.add("boundary_dissipation", boundary_dissipation);
+      energies.add("plastic_dissipation", last_report.plastic_dissipation);
+      energies.add("damage_dissipation", last_report.damage_dissipation);
+      energies.add("balance_residual", last_residual);
+      summary.add("energies", energies);
+      postprocess::JsonObject phases;
+      for (const auto &[name, seconds] :
+           timer.get_summary_data(TimerOutput::total_wall_time))
+        phases.add(name, seconds);
+      summary.add("wall_time_per_phase", phases);
+      summary.add("stages", stage_summaries);
+      if (cliff)
+        summary.add("cliff", cliff_summary);
+      summary.add("max_damage", last_report.max_damage);
+      summary.add("first_damage_time", first_damage_time);
+      summary.add("points_removed", n_removed);
+      if (averager)
+        {
+          // How often the non-local lists were rebuilt, reused as they
+          // were, or reused for the same points in a new order.
+          postprocess::JsonObject lists;
+          lists.add("rebuilds", double(averager->n_rebuilds()));
+          lists.add("reuses", double(averager->n_reuses()));
+          lists.add("reorders", double(averager->n_reorders()));
+          summary.add("nonlocal_lists", lists);
+        }
+      if (reference_displacement)
+        {
+          postprocess::JsonObject ref;
+          ref.add("final", reference_error_last);
+          ref.add("max", reference_error_max);
+          ref.add("norm_max", reference_norm_max);
+          ref.add("relative_max",
+                  reference_error_max / std::max(reference_norm_max, 1e-300));
+          summary.add("reference_error", ref);
+        }
+      summary.write(output_directory + "/summary.json");
+    }
+
+
+    // Instantiations (the other members are in the other
+    // simulation_*.cc files).
+    template double
+    Simulation<2>::reference_error(double *norm) const;
+    template double
+    Simulation<3>::reference_error(double *norm) const;
+    template void
+    Simulation<2>::write_output();
+    template void
+    Simulation<3>::write_output();
+    template void
+    Simulation<2>::write_statistics(const transfer::StepReport &r,
+                                    const Stage                &stage);
+    template void
+    Simulation<3>::write_statistics(const transfer::StepReport &r,
+                                    const Stage                &stage);
+    template void
+    Simulation<2>::print_progress(const transfer::StepReport &r,
+                                  const Stage                &stage,
+                                  const bool                  force);
+    template void
+    Simulation<3>::print_progress(const transfer::StepReport &r,
+                                  const Stage                &stage,
+                                  const bool                  force);
+    template void
+    Simulation<2>::write_summary(const std::string &how_it_ended);
+    template void
+    Simulation<3>::write_summary(const std::string &how_it_ended);
+  } // namespace simulation
+} // namespace scarp

@@ -1,0 +1,116 @@
+// Simulation: a refinement pass (flags from the criteria, refinement,
+// splitting, load balance; doc/refinement.md).
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/grid/refinement_marker.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/material_factory.h>
+#include <scarp/particles/body_seeder.h>
+#include <scarp/scenes/shape_factory.h>
+#include <scarp/simulation/simulation.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+
+    template <int dim>
+    bool
+    Simulation<dim>::refinement_due() const
+    {
+      return grid.adaptive_refinement && step % grid.refinement_interval == 0;
+    }
+
+
+    template <int dim>
+    bool
+    Simulation<dim>::precursors_due(const unsigned int s) const
+    {
+      return grid.adaptive_refinement && grid.refinement_driver_fraction > 0 &&
+             s % grid.refinement_interval == 0;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::refine_mesh()
+    {
+      TimerOutput::Scope scope(timer, "refinement");
+      auto              &tria = grid.triangulation();
+      ++n_refinement_checks;
+      // Seeds: cells with a damaged point, or with a point whose non-local
+      // driver approaches its damage threshold (gathered in the non-local
+      // step). Both are properties of the points, so the seeds do not
+      // depend on the partition.
+      std::vector<typename Triangulation<dim>::active_cell_iterator> seeds;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &particle : particles.particles_in_cell(cell))
+            {
+              const double *p = particle.get_properties().data();
+              const auto   &m =
+                *materials[static_cast<unsigned int>(p[layout.material_id])];
+              if (m.damage(p + layout.state) > grid.refinement_damage_limit ||
+                  std::binary_search(precursor_ids.begin(),
+                                     precursor_ids.end(),
+                                     particle.get_id()))
+                {
+                  seeds.push_back(cell);
+                  break;
+                }
+            }
+      precursor_ids.clear();
+      const double buffer =
+        grid.refinement_buffer * (averager ? averager->cutoff_radius() : 0.);
+      if (grid::RefinementMarker<dim>::mark(
+            tria, seeds, buffer, grid.max_refinement_level) == 0)
+        return;
+      particles.prepare_for_coarsening_and_refinement();
+      tria.execute_coarsening_and_refinement();
+      particles.unpack_after_coarsening_and_refinement();
+      std::vector<unsigned int> per_direction;
+      for (const auto &body : bodies)
+        per_direction.push_back(body.per_direction);
+      n_split += particles::PointSplitter<dim>::split(
+        particles, layout, per_direction, grid.domain(), communicator);
+      particles.sort_particles_into_subdomains_and_cells();
+      // Splitting changed the points per cell: repartition by them.
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        balance_load();
+      else
+        grid.setup_dofs();
+      mpm->setup();
+      local_boxes.clear();
+      if (averager)
+        averager->invalidate_neighbour_lists();
+      ++n_refinement_passes;
+    }
+
+
+    // Instantiations (the other members are in the other
+    // simulation_*.cc files).
+    template bool
+    Simulation<2>::refinement_due() const;
+    template bool
+    Simulation<3>::refinement_due() const;
+    template bool
+    Simulation<2>::precursors_due(const unsigned int s) const;
+    template bool
+    Simulation<3>::precursors_due(const unsigned int s) const;
+    template void
+    Simulation<2>::refine_mesh();
+    template void
+    Simulation<3>::refine_mesh();
+  } // namespace simulation
+} // namespace scarp

@@ -1,0 +1,364 @@
+// Simulation: one time step (the MPM step, mass scaling, the non-local
+// damage step, the sort) and its checks (stability, energy balance).
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <scarp/base/exceptions.h>
+#include <scarp/base/parameter_tools.h>
+#include <scarp/grid/refinement_marker.h>
+#include <scarp/materials/chalk.h>
+#include <scarp/materials/material_factory.h>
+#include <scarp/particles/body_seeder.h>
+#include <scarp/scenes/shape_factory.h>
+#include <scarp/simulation/simulation.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace scarp
+{
+  namespace simulation
+  {
+
+    template <int dim>
+    transfer::StepReport
+    Simulation<dim>::measure() const
+    {
+      transfer::StepReport report = mpm->measure(gravity);
+      report.reduce(communicator);
+      return report;
+    }
+
+
+    template <int dim>
+    double
+    Simulation<dim>::stable_time_step() const
+    {
+      double c = 0;
+      for (const auto &m : materials)
+        c = std::max(c, std::sqrt(m->p_wave_modulus() / m->density()));
+      // Mass scaling slows the waves by the square root of its factor.
+      return std::min(max_time_step,
+                      cfl * grid.minimum_cell_size() /
+                        (c / std::sqrt(inertia_scale) + last_report.max_speed));
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::nonlocal_damage_step(const Stage &stage)
+    {
+      const bool gather_precursors = precursors_due(step);
+      if (!averager || !(stage.damage || gather_precursors))
+        return;
+      TimerOutput::Scope scope(timer, "non-local damage");
+      // Without damage (gravity loading) no point is a receiver; for the
+      // refinement criterion every point that is not fully damaged is.
+      if (!stage.damage)
+        for (std::size_t k = 0; k < damage_points.receiver.size(); ++k)
+          damage_points.receiver[k] =
+            materials[static_cast<unsigned int>(
+                        damage_points.properties[k][layout.material_id])]
+              ->damage(damage_points.properties[k] + layout.state) < 1.;
+      // This rank's region: the bounding box of its locally owned cells.
+      // (GridTools::compute_mesh_predicate_bounding_box() at refinement
+      // level 1 reads past the last level of an unrefined mesh and
+      // crashed; at level 0 its merge is cubic in the number of coarse
+      // cells. One box is always a cover, which is all the averager needs.)
+      if (local_boxes.empty())
+        {
+          Point<dim> lower, upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = std::numeric_limits<double>::max();
+              upper[d] = std::numeric_limits<double>::lowest();
+            }
+          bool any = false;
+          for (const auto &cell : grid.triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                any = true;
+                for (const unsigned int v : cell->vertex_indices())
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                      upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+                    }
+              }
+          if (any)
+            local_boxes.emplace_back(std::make_pair(lower, upper));
+        }
+      // Fully damaged points of materials with 'Nonlocal exclude fully
+      // damaged' are left out of both sums of the average.
+      std::vector<bool> is_source(damage_points.position.size());
+      for (std::size_t k = 0; k < is_source.size(); ++k)
+        {
+          const double *p = damage_points.properties[k];
+          is_source[k] =
+            materials[static_cast<unsigned int>(p[layout.material_id])]
+              ->is_nonlocal_source(p + layout.state);
+        }
+      averager->compute(local_boxes,
+                        damage_points.position,
+                        damage_points.volume,
+                        damage_points.driver,
+                        damage_points.receiver,
+                        is_source,
+                        damage_points.id,
+                        nonlocal_driver);
+      // Points whose driver approaches their damage threshold seed the
+      // refinement pass at the end of this step (before the update: the
+      // threshold the driver is compared with is the one it had to pass).
+      for (std::size_t k = 0; k < damage_points.position.size(); ++k)
+        if (damage_points.receiver[k])
+          {
+            double     *p = damage_points.properties[k];
+            const auto &m =
+              *materials[static_cast<unsigned int>(p[layout.material_id])];
+            if (gather_precursors &&
+                nonlocal_driver[k] > grid.refinement_driver_fraction *
+                                       m.damage_threshold(p + layout.state))
+              precursor_ids.push_back(damage_points.id[k]);
+            if (stage.damage)
+              m.update_damage(nonlocal_driver[k], dt, p + layout.state);
+          }
+      if (gather_precursors)
+        std::sort(precursor_ids.begin(), precursor_ids.end());
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::check(const transfer::StepReport &report,
+                           const Stage                &stage)
+    {
+      std::string cause;
+      std::string failure = report.failure_message();
+      if (report.n_outside > 0 && remove_outside &&
+          report.n_failures() == report.n_outside)
+        failure.clear();
+      if (!failure.empty())
+        {
+          if (report.n_outside > 0 && report.n_failures() == report.n_outside)
+            cause = "a body leaves the background mesh: enlarge the <Mesh> "
+                    "box, or set <Points leaving the mesh> = remove.";
+          else if (report.n_inverted > 0 && report.n_not_finite == 0 &&
+                   report.n_too_fast == 0)
+            cause = "extreme distortion of a material point: a time step "
+                    "too large for the stiffness (<CFL number>), or a "
+                    "material too soft for the load.";
+          else
+            cause = "an unstable step: the <CFL number> (" +
+                    std::to_string(cfl) +
+                    ") is too large for the stiffness and speed, or nodes "
+                    "with tiny mass (<Small mass cutoff>, USL).";
+        }
+      else
+        {
+          // Energy balance: everything that entered minus what left.
+          // With mass scaling the kinetic energy of the scaled inertia.
+          const double kinetic = inertia_scale * report.kinetic_energy;
+          const double balance = kinetic + report.gravitational_energy +
+                                 internal_work + damping_dissipation +
+                                 boundary_dissipation + mass_scaling_loss;
+          last_residual   = balance - initial_energy;
+          scale_of_energy = std::max(
+            {scale_of_energy,
+             kinetic,
+             std::abs(report.gravitational_energy -
+                      (initial_energy - last_report.kinetic_energy * 0)),
+             std::abs(internal_work),
+             report.stored_energy});
+          if (last_residual > growth_tolerance * scale_of_energy &&
+              scale_of_energy > 0)
+            {
+              std::ostringstream s;
+              s << "The energy grew by " << last_residual << " J ("
+                << 100 * last_residual / scale_of_energy
+                << " % of the largest energy of the run, tolerance "
+                << 100 * growth_tolerance << " %).";
+              failure = s.str();
+              cause   = "an unstable step: the <CFL number> (" +
+                      std::to_string(cfl) +
+                      ") is too large for the stiffness and speed.";
+            }
+        }
+      if (failure.empty())
+        return;
+      std::ostringstream message;
+      message << "Stage " << stage.name << ", step " << step
+              << " (t = " << current_time << " s, dt = " << dt
+              << " s): " << failure << " Likely cause: " << cause;
+      write_summary("error: " + message.str());
+      throw ScarpError(message.str());
+    }
+
+
+    template <int dim>
+    double
+    Simulation<dim>::fast_volume(const double speed) const
+    {
+      double volume = 0;
+      for (const auto &particle : particles)
+        {
+          const double *p = particle.get_properties().data();
+          if (layout.get_vector(p, layout.velocity).norm() > speed)
+            volume += p[layout.reference_volume];
+        }
+      return Utilities::MPI::sum(volume, communicator);
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::advance(const Stage &stage)
+    {
+      const double scale = (stage.mass_scaling > 1 && !mass_scaling_ended)
+                             ? stage.mass_scaling
+                             : 1;
+      if (scale > inertia_scale)
+        {
+          // Mass scaling begins: the kinetic energy is kept (velocities
+          // times sqrt(old / new)). Keeping the velocities would multiply
+          // the energy of the vibrations left from the previous stage by
+          // m_s, and real time would get it back as m_s times stronger
+          // vibrations when the scaling ends.
+          const double f = std::sqrt(inertia_scale / scale);
+          for (auto &particle : particles)
+            {
+              double *p = particle.get_properties().data();
+              for (unsigned int d = 0; d < dim; ++d)
+                p[layout.velocity + d] *= f;
+              if (layout.has_affine)
+                for (unsigned int i = 0; i < dim * dim; ++i)
+                  p[layout.affine + i] *= f;
+            }
+          last_report.kinetic_energy *= f * f;
+          last_report.max_speed *= f;
+          inertia_scale = scale;
+        }
+      else if (scale < inertia_scale)
+        {
+          // Mass scaling ends: the velocities (the failure's motion) are
+          // kept, and the kinetic energy of the inertia that goes is booked
+          // so that the balance stays closed.
+          mass_scaling_loss +=
+            (inertia_scale - scale) * last_report.kinetic_energy;
+          inertia_scale = scale;
+        }
+      mpm->set_mass_scale(inertia_scale);
+      dt = stable_time_step();
+      if (current_time + dt > stage.end_time)
+        dt = std::max(stage.end_time - current_time, 1e-300);
+      for (auto &m : materials)
+        m->set_inelastic_enabled(stage.plasticity, stage.damage);
+
+      if (body_force)
+        body_force->set_time(current_time);
+      transfer::StepReport report;
+      {
+        TimerOutput::Scope scope(timer, "MPM step");
+        // Points of damage materials are gathered for the non-local step:
+        // in damage stages every step; in the others (gravity loading) in
+        // the step before a refinement check, so that cells refine where
+        // the driver approaches the threshold while the loading is still
+        // damped (their transients die out before the collapse starts).
+        const bool gather =
+          any_damage && (stage.damage || precursors_due(step + 1));
+        report = mpm->step(dt,
+                           gravity,
+                           stage.damping,
+                           gather ? &damage_points : nullptr);
+        report.reduce(communicator);
+      }
+      internal_work += report.internal_work;
+      damping_dissipation += report.damping_dissipation;
+      boundary_dissipation += report.boundary_dissipation;
+      current_time += dt;
+      ++step;
+      check(report, stage);
+      // The volume test runs only when a point is fast (report.max_speed is
+      // reduced, so every rank takes the same branch).
+      if (inertia_scale > 1 && stage.mass_scaling_end_speed > 0 &&
+          report.max_speed > stage.mass_scaling_end_speed &&
+          (stage.mass_scaling_end_volume == 0 ||
+           fast_volume(stage.mass_scaling_end_speed) >
+             stage.mass_scaling_end_volume))
+        {
+          // Real time from the next step on.
+          mass_scaling_ended    = true;
+          mass_scaling_end_time = current_time;
+          pcout << "Stage " << stage.name << ": points move faster than "
+                << stage.mass_scaling_end_speed << " m/s (largest speed "
+                << report.max_speed
+                << " m/s): mass scaling ends at t = " << current_time << " s"
+                << std::endl;
+        }
+      nonlocal_damage_step(stage);
+      {
+        TimerOutput::Scope scope(timer, "sort particles");
+        if (report.n_changed_cell > 0)
+          particles.sort_particles_into_subdomains_and_cells();
+        else
+          mpm->update_reference_locations();
+      }
+      if (report.n_outside > 0)
+        n_removed += report.n_outside;
+      if (first_damage_time < 0 && report.max_damage > 0.5 && stage.damage &&
+          any_damage)
+        first_damage_time = current_time;
+      last_report = report;
+      if (cliff && stage.damage && failure_time < 0 &&
+          report.max_speed > failure_speed &&
+          (failure_volume == 0 || fast_volume(failure_speed) > failure_volume))
+        {
+          failure_time = current_time;
+          cliff_snapshot("failure");
+        }
+      if (refinement_due())
+        refine_mesh();
+      else if (balance_interval > 0 && step % balance_interval == 0)
+        rebalance_if_needed();
+      if (step >= max_steps)
+        {
+          write_summary("error: maximum number of steps reached");
+          throw ScarpError("Stage " + stage.name +
+                           ": the run reached <Maximum "
+                           "steps> = " +
+                           std::to_string(max_steps) +
+                           " at t = " + std::to_string(current_time) + " s.");
+        }
+    }
+
+
+    // Instantiations (the other members are in the other
+    // simulation_*.cc files).
+    template transfer::StepReport
+    Simulation<2>::measure() const;
+    template transfer::StepReport
+    Simulation<3>::measure() const;
+    template double
+    Simulation<2>::stable_time_step() const;
+    template double
+    Simulation<3>::stable_time_step() const;
+    template void
+    Simulation<2>::nonlocal_damage_step(const Stage &stage);
+    template void
+    Simulation<3>::nonlocal_damage_step(const Stage &stage);
+    template void
+    Simulation<2>::check(const transfer::StepReport &report,
+                         const Stage                &stage);
+    template void
+    Simulation<3>::check(const transfer::StepReport &report,
+                         const Stage                &stage);
+    template void
+    Simulation<2>::advance(const Stage &stage);
+    template void
+    Simulation<3>::advance(const Stage &stage);
+  } // namespace simulation
+} // namespace scarp
