@@ -63,30 +63,6 @@ namespace scarp
                                     box.upper_bound(d) - x[d]}));
       }
 
-      /// Scratch of one cell's constitutive update for one material.
-      template <int dim>
-      struct Batch
-      {
-        std::vector<Tensor<2, 3>>          delta_F, F, strain_increment;
-        std::vector<double *>              state;
-        std::vector<SymmetricTensor<2, 3>> stress;
-        std::vector<double>                stored_energy, driver;
-        std::vector<double *>              properties;
-        std::vector<Point<dim>>            position;
-        std::vector<types::particle_index> id;
-        void
-        clear()
-        {
-          delta_F.clear();
-          F.clear();
-          strain_increment.clear();
-          state.clear();
-          stress.clear();
-          properties.clear();
-          position.clear();
-          id.clear();
-        }
-      };
     } // namespace
 
 
@@ -159,49 +135,6 @@ namespace scarp
 
 
     template <int dim>
-    unsigned int
-    MpmTransfer<dim>::cell_nodes(
-      const typename DoFHandler<dim>::active_cell_iterator &cell,
-      double                                               &h,
-      Point<dim>                                           &x0,
-      std::vector<types::global_dof_index>                 &dofs,
-      std::vector<Point<dim>>                              &positions,
-      const types::global_dof_index                       *&dof_ptr,
-      const unsigned int                                  *&local_ptr,
-      const Point<dim>                                    *&node_ptr,
-      const typename GimpPatches<dim>::Patch              *&patch)
-    {
-      // Cells are axis-aligned squares (cubes): the edge is the distance of
-      // the first two vertices, which is cheaper than extent_in_direction().
-      x0 = cell->vertex(0);
-      h  = cell->vertex(1)[0] - x0[0];
-      if (parameters.shape_functions == ShapeFunctions::gimp)
-        {
-          // The patch's own arrays: no copy per cell and sweep.
-          patch     = &patches.patch(cell);
-          dof_ptr   = patch->node_dofs.data();
-          local_ptr = patch->node_local.data();
-          node_ptr  = patch->node_positions.data();
-          return patch->n_nodes();
-        }
-      patch = nullptr;
-      dofs.resize(Q1Shape<dim>::n);
-      positions.resize(Q1Shape<dim>::n);
-      cell->get_dof_indices(dofs);
-      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          positions[i][d] = x0[d] + h * Q1Shape<dim>::offset(i, d);
-      q1_local.resize(Q1Shape<dim>::n);
-      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-        q1_local[i] = mass.get_partitioner()->global_to_local(dofs[i]);
-      dof_ptr   = dofs.data();
-      local_ptr = q1_local.data();
-      node_ptr  = positions.data();
-      return Q1Shape<dim>::n;
-    }
-
-
-    template <int dim>
     void
     MpmTransfer<dim>::shape_at(const typename GimpPatches<dim>::Patch *patch,
                                const Point<dim>                       &xi,
@@ -242,32 +175,19 @@ namespace scarp
       shape_value.clear();
       shape_gradient.clear();
       shape_begin.push_back(0);
-      std::vector<types::global_dof_index> dofs;
-      std::vector<Point<dim>>              node;
-      std::vector<double>                  value;
-      std::vector<Tensor<1, dim>>          gradient;
+      const auto                 &pool = particle_handler.get_property_pool();
+      std::vector<double>         value;
+      std::vector<Tensor<1, dim>> gradient;
       for (const OccupiedCell &occupied : occupied_cells)
         {
-          double                                  h;
-          Point<dim>                              x0;
-          const typename GimpPatches<dim>::Patch *patch;
-          const types::global_dof_index          *dof_ptr;
-          const unsigned int                     *local_ptr;
-          const Point<dim>                       *node_ptr;
-          cell_nodes(occupied.cell,
-                     h,
-                     x0,
-                     dofs,
-                     node,
-                     dof_ptr,
-                     local_ptr,
-                     node_ptr,
-                     patch);
-          for (const auto &particle : occupied.particles)
+          const double      h  = occupied.h;
+          const Point<dim> &x0 = occupied.x0;
+          for (unsigned int k = occupied.point_begin; k < occupied.point_end;
+               ++k)
             {
-              const double *p  = particle.get_properties().data();
-              const auto    xi = particle.get_reference_location();
-              shape_at(patch,
+              const double *p  = point_properties[k];
+              const auto    xi = pool.get_reference_location(point_handle[k]);
+              shape_at(occupied.patch,
                        xi,
                        x0 + h * xi,
                        h,
@@ -298,12 +218,9 @@ namespace scarp
           momentum[d] = 0;
           force[d]    = 0;
         }
-      dealii::Vector<double>                  local_mass;
-      std::array<dealii::Vector<double>, dim> local_momentum, local_force;
-      std::vector<types::global_dof_index>    dofs;
-      std::vector<Point<dim>>                 node;
-      const bool                              apic = layout.has_affine;
-      unsigned int                            k    = 0; // point counter
+      const auto  &pool = particle_handler.get_property_pool();
+      const bool   apic = layout.has_affine;
+      unsigned int k    = 0; // point counter
       // GIMP patch nodes are unconstrained (the patch resolved the hanging
       // ones); Q1 cells on a mesh with hanging nodes go through the
       // constraints.
@@ -313,26 +230,28 @@ namespace scarp
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
-          const auto &cell      = occupied.cell;
-          const auto &particles = occupied.particles;
-          double      h;
-          Point<dim>  x0;
-          const typename GimpPatches<dim>::Patch *patch;
-          const types::global_dof_index          *dof_ptr;
-          const unsigned int                     *local_ptr;
-          const Point<dim>                       *node_ptr;
-          const unsigned int                      n = cell_nodes(
-            cell, h, x0, dofs, node, dof_ptr, local_ptr, node_ptr, patch);
-          local_mass.reinit(n);
+          const double        h  = occupied.h;
+          const Point<dim>   &x0 = occupied.x0;
+          const unsigned int  n  = occupied.n_nodes;
+          const unsigned int *local_ptr =
+            node_local.data() + occupied.node_begin;
+          const Point<dim> *node_ptr =
+            node_position.data() + occupied.node_begin;
+          // Accumulators of the cell: mass, momentum d, force d (n each).
+          local_sums.assign((1 + 2 * dim) * n, 0.);
+          double *const local_mass = local_sums.data();
+          double       *local_momentum[dim], *local_force[dim];
           for (unsigned int d = 0; d < dim; ++d)
             {
-              local_momentum[d].reinit(n);
-              local_force[d].reinit(n);
+              local_momentum[d] = local_mass + (1 + d) * n;
+              local_force[d]    = local_mass + (1 + dim + d) * n;
             }
-          for (const auto &particle : particles)
+          for (unsigned int q = occupied.point_begin; q < occupied.point_end;
+               ++q)
             {
-              const double    *p  = particle.get_properties().data();
-              const Point<dim> xp = x0 + h * particle.get_reference_location();
+              const double    *p = point_properties[q];
+              const Point<dim> xp =
+                x0 + h * pool.get_reference_location(point_handle[q]);
               const unsigned int e0 = shape_begin[k], e1 = shape_begin[k + 1];
               ++k;
               const double         m = p[layout.mass];
@@ -352,9 +271,9 @@ namespace scarp
                     {
                       const unsigned int i = shape_node[e];
                       const double       w = shape_value[e] * m;
-                      local_mass(i) += w;
+                      local_mass[i] += w;
                       for (unsigned int d = 0; d < dim; ++d)
-                        local_momentum[d](i) += w * v[d];
+                        local_momentum[d][i] += w * v[d];
                     }
                   continue;
                 }
@@ -381,11 +300,11 @@ namespace scarp
                   const Tensor<1, dim> f =
                     -volume * stress_times<dim>(sigma, shape_gradient[e]) +
                     w * acceleration;
-                  local_mass(i) += w;
+                  local_mass[i] += w;
                   for (unsigned int d = 0; d < dim; ++d)
                     {
-                      local_momentum[d](i) += w * vi[d];
-                      local_force[d](i) += f[d];
+                      local_momentum[d][i] += w * vi[d];
+                      local_force[d][i] += f[d];
                     }
                 }
             }
@@ -393,29 +312,34 @@ namespace scarp
             {
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  mass.local_element(local_ptr[i]) += local_mass(i);
+                  mass.local_element(local_ptr[i]) += local_mass[i];
                   for (unsigned int d = 0; d < dim; ++d)
                     {
                       momentum[d].local_element(local_ptr[i]) +=
-                        local_momentum[d](i);
+                        local_momentum[d][i];
                       if (!momentum_only)
                         force[d].local_element(local_ptr[i]) +=
-                          local_force[d](i);
+                          local_force[d][i];
                     }
                 }
               continue;
             }
-          const auto &constraints = grid.constraints();
-          constraints.distribute_local_to_global(local_mass, dofs, mass);
+          // Q1 with hanging nodes: through the constraints.
+          const std::vector<types::global_dof_index> dofs(
+            node_dof.begin() + occupied.node_begin,
+            node_dof.begin() + occupied.node_begin + n);
+          dealii::Vector<double> local(n);
+          const auto            &constraints = grid.constraints();
+          const auto distribute = [&](const double *values, Vector &global) {
+            std::copy(values, values + n, local.begin());
+            constraints.distribute_local_to_global(local, dofs, global);
+          };
+          distribute(local_mass, mass);
           for (unsigned int d = 0; d < dim; ++d)
             {
-              constraints.distribute_local_to_global(local_momentum[d],
-                                                     dofs,
-                                                     momentum[d]);
+              distribute(local_momentum[d], momentum[d]);
               if (!momentum_only)
-                constraints.distribute_local_to_global(local_force[d],
-                                                       dofs,
-                                                       force[d]);
+                distribute(local_force[d], force[d]);
             }
         }
       mass.compress(VectorOperation::add);
@@ -593,28 +517,28 @@ namespace scarp
       DamagePoints<dim>             *damage_points,
       const Tensor<1, dim>          &gravity)
     {
-      std::vector<types::global_dof_index> dofs;
-      std::vector<Point<dim>>              node;
-      unsigned int                         k      = 0; // point counter
-      const double                         alpha  = parameters.flip_fraction;
-      const bool                           apic   = layout.has_affine;
-      const BoundingBox<dim>              &domain = grid.domain();
-      std::vector<Batch<dim>>              batches(materials.size());
-      std::vector<Tensor<1, dim>>          v_new, v_old, v_stress;
-      std::vector<bool>                    empty;
+      auto                   &pool   = particle_handler.get_property_pool();
+      unsigned int            k      = 0; // point counter
+      const double            alpha  = parameters.flip_fraction;
+      const bool              apic   = layout.has_affine;
+      const BoundingBox<dim> &domain = grid.domain();
+      material_scratch.resize(materials.size());
+      auto &batches  = material_scratch;
+      auto &v_new    = local_v_new;
+      auto &v_old    = local_v_old;
+      auto &v_stress = local_v_stress;
+      auto &empty    = local_empty;
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
-          const auto &cell      = occupied.cell;
-          auto        particles = occupied.particles;
-          double      h;
-          Point<dim>  x0;
-          const typename GimpPatches<dim>::Patch *patch;
-          const types::global_dof_index          *dof_ptr;
-          const unsigned int                     *local_ptr;
-          const Point<dim>                       *node_ptr;
-          const unsigned int                      n = cell_nodes(
-            cell, h, x0, dofs, node, dof_ptr, local_ptr, node_ptr, patch);
+          const double        h     = occupied.h;
+          const Point<dim>   &x0    = occupied.x0;
+          const auto         *patch = occupied.patch;
+          const unsigned int  n     = occupied.n_nodes;
+          const unsigned int *local_ptr =
+            node_local.data() + occupied.node_begin;
+          const types::global_dof_index *dof_ptr =
+            node_dof.data() + occupied.node_begin;
           v_new.resize(n);
           v_old.resize(n);
           v_stress.resize(n);
@@ -637,10 +561,12 @@ namespace scarp
           for (auto &b : batches)
             b.clear();
 
-          for (auto &particle : particles)
+          for (unsigned int q = occupied.point_begin; q < occupied.point_end;
+               ++q)
             {
-              double            *p  = particle.get_properties().data();
-              const auto         xi = particle.get_reference_location();
+              const unsigned int handle = point_handle[q];
+              double            *p      = point_properties[q];
+              const auto        &xi     = pool.get_reference_location(handle);
               const unsigned int e0 = shape_begin[k], e1 = shape_begin[k + 1];
               ++k;
               if (update_positions_and_velocities)
@@ -669,8 +595,8 @@ namespace scarp
                   layout.set_vector(p, layout.velocity, v);
                   const Point<dim>     x_old = x0 + h * xi;
                   const Tensor<1, dim> dx    = dt * v_grid;
-                  const Point<dim>     x_new = particle.get_location() + dx;
-                  particle.set_location(x_new);
+                  const Point<dim>     x_new = pool.get_location(handle) + dx;
+                  pool.set_location(handle, x_new);
                   const bool finite = std::isfinite(v.norm_square()) &&
                                       std::isfinite(x_new.norm_square());
                   const bool outside  = finite && !domain.point_inside(x_new);
@@ -721,7 +647,7 @@ namespace scarp
                         {
                           report.has_offender = true;
                           for (unsigned int d = 0; d < dim; ++d)
-                            report.offender[d] = particle.get_location()[d];
+                            report.offender[d] = pool.get_location(handle)[d];
                         }
                       continue;
                     }
@@ -733,7 +659,7 @@ namespace scarp
                         {
                           report.has_offender = true;
                           for (unsigned int d = 0; d < dim; ++d)
-                            report.offender[d] = particle.get_location()[d];
+                            report.offender[d] = pool.get_location(handle)[d];
                         }
                     }
                   // Stress power with the old stress; the new half is added
@@ -747,7 +673,7 @@ namespace scarp
                   const double V = p[layout.reference_volume] * J;
                   report.internal_work += 0.5 * dt * V * power;
 
-                  Batch<dim> &b =
+                  MaterialScratch &b =
                     batches[static_cast<unsigned int>(p[layout.material_id])];
                   b.delta_F.push_back(embed<dim>(dF, 1.));
                   b.strain_increment.push_back(
@@ -756,8 +682,8 @@ namespace scarp
                   b.state.push_back(p + layout.state);
                   b.stress.push_back(sigma);
                   b.properties.push_back(p);
-                  b.position.push_back(particle.get_location());
-                  b.id.push_back(particle.get_id());
+                  b.position.push_back(pool.get_location(handle));
+                  b.id.push_back(pool.get_id(handle));
                 }
             }
 
@@ -765,7 +691,7 @@ namespace scarp
             continue;
           for (unsigned int mat = 0; mat < batches.size(); ++mat)
             {
-              Batch<dim> &b = batches[mat];
+              MaterialScratch &b = batches[mat];
               if (b.F.empty())
                 continue;
               const materials::Material &material = *materials[mat];
@@ -845,16 +771,20 @@ namespace scarp
     void
     MpmTransfer<dim>::update_reference_locations()
     {
+      auto &pool = particle_handler.get_property_pool();
       for (const OccupiedCell &occupied : occupied_cells)
         {
-          const Point<dim> x0 = occupied.cell->vertex(0);
-          const double     h  = occupied.cell->vertex(1)[0] - x0[0];
-          for (auto &particle : occupied.particles)
+          const Point<dim> &x0 = occupied.x0;
+          const double      h  = occupied.h;
+          for (unsigned int q = occupied.point_begin; q < occupied.point_end;
+               ++q)
             {
-              Point<dim> xi;
+              const unsigned int handle = point_handle[q];
+              const Point<dim>  &x      = pool.get_location(handle);
+              Point<dim>         xi;
               for (unsigned int d = 0; d < dim; ++d)
-                xi[d] = (particle.get_location()[d] - x0[d]) / h;
-              particle.set_reference_location(xi);
+                xi[d] = (x[d] - x0[d]) / h;
+              pool.set_reference_location(handle, xi);
             }
         }
     }
@@ -865,12 +795,67 @@ namespace scarp
     MpmTransfer<dim>::find_occupied_cells()
     {
       occupied_cells.clear();
+      node_local.clear();
+      node_dof.clear();
+      node_position.clear();
+      point_handle.clear();
+      point_properties.clear();
+      auto      &pool = particle_handler.get_property_pool();
+      const bool gimp = parameters.shape_functions == ShapeFunctions::gimp;
+      const Utilities::MPI::Partitioner &partitioner = *mass.get_partitioner();
+      std::vector<types::global_dof_index> dofs(Q1Shape<dim>::n);
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            auto particles = particle_handler.particles_in_cell(cell);
-            if (particles.begin() != particles.end())
-              occupied_cells.push_back({cell, particles});
+            const auto particles = particle_handler.particles_in_cell(cell);
+            if (particles.begin() == particles.end())
+              continue;
+            OccupiedCell occupied;
+            occupied.cell = cell;
+            // Cells are axis-aligned squares (cubes): the edge is the
+            // distance of the first two vertices.
+            occupied.x0         = cell->vertex(0);
+            occupied.h          = cell->vertex(1)[0] - occupied.x0[0];
+            occupied.node_begin = node_local.size();
+            if (gimp)
+              {
+                const auto &patch = patches.patch(cell);
+                occupied.patch    = &patch;
+                node_local.insert(node_local.end(),
+                                  patch.node_local.begin(),
+                                  patch.node_local.end());
+                node_dof.insert(node_dof.end(),
+                                patch.node_dofs.begin(),
+                                patch.node_dofs.end());
+                node_position.insert(node_position.end(),
+                                     patch.node_positions.begin(),
+                                     patch.node_positions.end());
+              }
+            else
+              {
+                occupied.patch = nullptr;
+                cell->get_dof_indices(dofs);
+                for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+                  {
+                    Point<dim> x;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      x[d] = occupied.x0[d] +
+                             occupied.h * Q1Shape<dim>::offset(i, d);
+                    node_local.push_back(partitioner.global_to_local(dofs[i]));
+                    node_dof.push_back(dofs[i]);
+                    node_position.push_back(x);
+                  }
+              }
+            occupied.n_nodes     = node_local.size() - occupied.node_begin;
+            occupied.point_begin = point_handle.size();
+            for (const auto &particle : particles)
+              {
+                const unsigned int handle = particle.get_local_index();
+                point_handle.push_back(handle);
+                point_properties.push_back(pool.get_properties(handle).data());
+              }
+            occupied.point_end = point_handle.size();
+            occupied_cells.push_back(occupied);
           }
     }
 

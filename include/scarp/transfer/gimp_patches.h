@@ -88,7 +88,8 @@ namespace scarp
              const AffineConstraints<double>   &constraints,
              const Utilities::MPI::Partitioner &partitioner);
 
-      /// The patch of a locally owned cell (built the first time asked).
+      /// The patch of a locally owned cell (built the first time asked;
+      /// the reference stays valid until the next reinit()).
       const Patch &
       patch(const typename DoFHandler<dim>::active_cell_iterator &cell);
 
@@ -115,9 +116,11 @@ namespace scarp
       const Utilities::MPI::Partitioner *partitioner = nullptr;
       /// Active cells at each vertex (only non-artificial cells).
       std::vector<std::vector<typename DoFHandler<dim>::active_cell_iterator>>
-                         vertex_cells;
-      std::vector<int>   patch_index; ///< per active cell index
-      std::vector<Patch> patches;
+                       vertex_cells;
+      std::vector<int> patch_index; ///< per active cell index
+      /// A deque: a patch stays in place while others are added, so the
+      /// transfer may keep pointers to the patches of a step.
+      std::deque<Patch> patches;
     };
   } // namespace transfer
 } // namespace scarp

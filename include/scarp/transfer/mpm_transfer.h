@@ -166,23 +166,6 @@ namespace scarp
                         StepReport                    &report,
                         DamagePoints<dim>             *damage_points,
                         const Tensor<1, dim>          &gravity);
-      /// The nodes the points of @p cell couple to: with Q1 the cell's own
-      /// 2^dim (constrained if hanging; stored in @p dofs, @p positions),
-      /// with GIMP the unconstrained nodes of its patch (the patch's arrays).
-      /// Sets @p h and @p x0 (edge and lowest vertex), @p dof_ptr and
-      /// @p node_ptr to the nodes' dofs and positions, @p local_ptr to their
-      /// indices in the local storage of the grid vectors; returns their
-      /// number.
-      unsigned int
-      cell_nodes(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                 double                                               &h,
-                 Point<dim>                                           &x0,
-                 std::vector<types::global_dof_index>                 &dofs,
-                 std::vector<Point<dim>>                 &positions,
-                 const types::global_dof_index          *&dof_ptr,
-                 const unsigned int                     *&local_ptr,
-                 const Point<dim>                       *&node_ptr,
-                 const typename GimpPatches<dim>::Patch *&patch);
       /// Weights and gradients of the point at reference location @p xi
       /// (Q1), or at @p x with reference volume @p V0 (GIMP).
       void
@@ -221,32 +204,83 @@ namespace scarp
       Tensor<1, dim>       last_gravity;
       Tensor<1, dim>       gravity_for_empty_nodes;
 
-      /// The locally owned cells that hold points, with their points; built
-      /// once per step (points change cells only in the sort after it), so
-      /// the four P2G/G2P sweeps of a MUSL step neither visit empty cells
-      /// nor ask the particle handler for each cell's points again.
+      /// A locally owned cell that holds points, with what every sweep of
+      /// a step needs of it. Gathered once per step (points change cells
+      /// only in the sort after it), so the five P2G/G2P sweeps of a MUSL
+      /// step neither visit empty cells, nor ask the particle handler for
+      /// each cell's points, nor look up patches and dof indices again: they
+      /// read the flat arrays below in order.
       struct OccupiedCell
       {
         typename DoFHandler<dim>::active_cell_iterator cell;
-        typename Particles::ParticleHandler<dim>::particle_iterator_range
-          particles;
+        /// Lowest vertex and edge of the (axis-aligned) cell.
+        Point<dim> x0;
+        double     h;
+        /// GIMP: the cell's patch (GimpPatches keeps it in place until its
+        /// next reinit); Q1: nullptr.
+        const typename GimpPatches<dim>::Patch *patch;
+        /// Its nodes: entries [node_begin, node_begin + n_nodes) of
+        /// node_local, node_dof, node_position. Q1: the cell's 2^dim
+        /// (constrained if hanging), GIMP: the unconstrained patch nodes.
+        unsigned int node_begin, n_nodes;
+        /// Its points: entries [point_begin, point_end) of point_handle,
+        /// point_properties.
+        unsigned int point_begin, point_end;
       };
       std::vector<OccupiedCell> occupied_cells;
-      /// Rebuild occupied_cells.
+      /// Nodes of the occupied cells: index in the local storage of the
+      /// grid vectors (local_element()), global dof, position.
+      std::vector<unsigned int>            node_local;
+      std::vector<types::global_dof_index> node_dof;
+      std::vector<Point<dim>>              node_position;
+      /// Points of the occupied cells: PropertyPool handle and property
+      /// array (the pool does not move its storage within a step).
+      std::vector<unsigned int> point_handle;
+      std::vector<double *>     point_properties;
+      /// Rebuild occupied_cells and the node and point arrays.
       void
       find_occupied_cells();
+
+      /// Scratch of one cell's constitutive update for one material, kept
+      /// between calls so that its storage is not allocated again.
+      struct MaterialScratch
+      {
+        std::vector<Tensor<2, 3>>          delta_F, F, strain_increment;
+        std::vector<double *>              state;
+        std::vector<SymmetricTensor<2, 3>> stress;
+        std::vector<double>                stored_energy, driver;
+        std::vector<double *>              properties;
+        std::vector<Point<dim>>            position;
+        std::vector<types::particle_index> id;
+        void
+        clear()
+        {
+          delta_F.clear();
+          F.clear();
+          strain_increment.clear();
+          state.clear();
+          stress.clear();
+          properties.clear();
+          position.clear();
+          id.clear();
+        }
+      };
+      std::vector<MaterialScratch> material_scratch;
+      /// Per-cell scratch of the sweeps: P2G accumulators (mass, then dim
+      /// momentum and dim force components of n nodes each), G2P nodal
+      /// velocities and empty-node flags.
+      std::vector<double>         local_sums;
+      std::vector<Tensor<1, dim>> local_v_new, local_v_old, local_v_stress;
+      std::vector<char>           local_empty;
 
       /// Non-zero shape functions of every point of the occupied cells (in
       /// the order of occupied_cells and their points) for this step:
       /// entries [shape_begin[k], shape_begin[k + 1]) of point k, with the
-      /// node's index among the cell's nodes (see cell_nodes()).
+      /// node's index among the cell's nodes (OccupiedCell::n_nodes).
       std::vector<unsigned int>   shape_begin;
       std::vector<unsigned int>   shape_node;
       std::vector<double>         shape_value;
       std::vector<Tensor<1, dim>> shape_gradient;
-
-      /// Local vector indices of the nodes of the current Q1 cell.
-      std::vector<unsigned int> q1_local;
 
       /// GIMP patches of the occupied cells (built as cells fill).
       GimpPatches<dim> patches;
