@@ -106,6 +106,20 @@ namespace scarp
         }
       for (const types::global_dof_index dof : p.node_dofs)
         p.node_local.push_back(partitioner->global_to_local(dof));
+      for (unsigned int c = 0; c < p.cell_size.size(); ++c)
+        {
+          typename Patch::Cell cell;
+          cell.lower = p.cell_lower[c];
+          for (unsigned int d = 0; d < dim; ++d)
+            cell.upper[d] = p.cell_lower[c][d] + p.cell_size[c];
+          cell.h     = p.cell_size[c];
+          cell.inv_h = 1. / p.cell_size[c];
+          for (unsigned int i = 0; i <= n_v; ++i)
+            cell.entry_begin[i] = p.entry_begin[c * n_v + i];
+          p.cells.push_back(cell);
+        }
+      for (unsigned int e = 0; e < p.entry_node.size(); ++e)
+        p.entries.emplace_back(p.entry_node[e], p.entry_weight[e]);
       index = patches.size();
       patches.push_back(std::move(p));
       return patches.back();
@@ -124,16 +138,15 @@ namespace scarp
       value.assign(n, 0.);
       gradient.assign(n, Tensor<1, dim>());
       constexpr unsigned int n_v = 1u << dim;
-      for (unsigned int c = 0; c < patch.cell_size.size(); ++c)
+      for (const typename Patch::Cell &cell : patch.cells)
         {
-          const double      h        = patch.cell_size[c];
-          const Point<dim> &lower    = patch.cell_lower[c];
-          double            fraction = 1.;
-          double            xi[dim];
-          bool              overlaps = true;
+          const double h        = cell.h;
+          double       fraction = 1.;
+          double       xi[dim];
+          bool         overlaps = true;
           for (unsigned int d = 0; d < dim && overlaps; ++d)
             {
-              const double a = lower[d], b = a + h;
+              const double a = cell.lower[d], b = cell.upper[d];
               if (l[d] > 0)
                 {
                   const double lo = std::max(x[d] - l[d], a);
@@ -158,7 +171,7 @@ namespace scarp
             }
           if (!overlaps)
             continue;
-          const double inv_h = 1. / h;
+          const double inv_h = cell.inv_h;
           for (unsigned int i = 0; i < n_v; ++i)
             {
               double f[dim], df[dim];
@@ -180,14 +193,13 @@ namespace scarp
                       g *= f[e];
                   grad[d] = g;
                 }
-              const unsigned int k = c * n_v + i;
-              for (unsigned int e = patch.entry_begin[k];
-                   e < patch.entry_begin[k + 1];
+              for (unsigned int e = cell.entry_begin[i];
+                   e < cell.entry_begin[i + 1];
                    ++e)
                 {
-                  const double w = patch.entry_weight[e];
-                  value[patch.entry_node[e]] += w * phi;
-                  gradient[patch.entry_node[e]] += w * grad;
+                  const auto &[node, w] = patch.entries[e];
+                  value[node] += w * phi;
+                  gradient[node] += w * grad;
                 }
             }
         }

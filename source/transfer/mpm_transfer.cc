@@ -100,6 +100,8 @@ namespace scarp
       patches.reinit(grid.dof_handler(),
                      grid.constraints(),
                      *mass.get_partitioner());
+      occupied_cells.clear();
+      node_arrays_valid = false;
       compute_node_cutoffs();
     }
 
@@ -794,16 +796,12 @@ namespace scarp
     void
     MpmTransfer<dim>::find_occupied_cells()
     {
+      // The occupied cells, in order, with their points.
+      previous_cells.swap(occupied_cells);
       occupied_cells.clear();
-      node_local.clear();
-      node_dof.clear();
-      node_position.clear();
       point_handle.clear();
       point_properties.clear();
-      auto      &pool = particle_handler.get_property_pool();
-      const bool gimp = parameters.shape_functions == ShapeFunctions::gimp;
-      const Utilities::MPI::Partitioner &partitioner = *mass.get_partitioner();
-      std::vector<types::global_dof_index> dofs(Q1Shape<dim>::n);
+      auto &pool = particle_handler.get_property_pool();
       for (const auto &cell : grid.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -814,39 +812,11 @@ namespace scarp
             occupied.cell = cell;
             // Cells are axis-aligned squares (cubes): the edge is the
             // distance of the first two vertices.
-            occupied.x0         = cell->vertex(0);
-            occupied.h          = cell->vertex(1)[0] - occupied.x0[0];
-            occupied.node_begin = node_local.size();
-            if (gimp)
-              {
-                const auto &patch = patches.patch(cell);
-                occupied.patch    = &patch;
-                node_local.insert(node_local.end(),
-                                  patch.node_local.begin(),
-                                  patch.node_local.end());
-                node_dof.insert(node_dof.end(),
-                                patch.node_dofs.begin(),
-                                patch.node_dofs.end());
-                node_position.insert(node_position.end(),
-                                     patch.node_positions.begin(),
-                                     patch.node_positions.end());
-              }
-            else
-              {
-                occupied.patch = nullptr;
-                cell->get_dof_indices(dofs);
-                for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-                  {
-                    Point<dim> x;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      x[d] = occupied.x0[d] +
-                             occupied.h * Q1Shape<dim>::offset(i, d);
-                    node_local.push_back(partitioner.global_to_local(dofs[i]));
-                    node_dof.push_back(dofs[i]);
-                    node_position.push_back(x);
-                  }
-              }
-            occupied.n_nodes     = node_local.size() - occupied.node_begin;
+            occupied.x0          = cell->vertex(0);
+            occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
+            occupied.patch       = nullptr;
+            occupied.node_begin  = 0;
+            occupied.n_nodes     = 0;
             occupied.point_begin = point_handle.size();
             for (const auto &particle : particles)
               {
@@ -857,6 +827,63 @@ namespace scarp
             occupied.point_end = point_handle.size();
             occupied_cells.push_back(occupied);
           }
+
+      // Their nodes depend on the cells only: most steps occupy the same
+      // cells as the step before (same mesh), and keep the node arrays.
+      bool same_cells =
+        node_arrays_valid && previous_cells.size() == occupied_cells.size();
+      for (unsigned int c = 0; same_cells && c < occupied_cells.size(); ++c)
+        same_cells = previous_cells[c].cell == occupied_cells[c].cell;
+      if (same_cells)
+        {
+          for (unsigned int c = 0; c < occupied_cells.size(); ++c)
+            {
+              occupied_cells[c].patch      = previous_cells[c].patch;
+              occupied_cells[c].node_begin = previous_cells[c].node_begin;
+              occupied_cells[c].n_nodes    = previous_cells[c].n_nodes;
+            }
+          return;
+        }
+      node_local.clear();
+      node_dof.clear();
+      node_position.clear();
+      const bool gimp = parameters.shape_functions == ShapeFunctions::gimp;
+      const Utilities::MPI::Partitioner &partitioner = *mass.get_partitioner();
+      std::vector<types::global_dof_index> dofs(Q1Shape<dim>::n);
+      for (OccupiedCell &occupied : occupied_cells)
+        {
+          occupied.node_begin = node_local.size();
+          if (gimp)
+            {
+              const auto &patch = patches.patch(occupied.cell);
+              occupied.patch    = &patch;
+              node_local.insert(node_local.end(),
+                                patch.node_local.begin(),
+                                patch.node_local.end());
+              node_dof.insert(node_dof.end(),
+                              patch.node_dofs.begin(),
+                              patch.node_dofs.end());
+              node_position.insert(node_position.end(),
+                                   patch.node_positions.begin(),
+                                   patch.node_positions.end());
+            }
+          else
+            {
+              occupied.cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+                {
+                  Point<dim> x;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    x[d] =
+                      occupied.x0[d] + occupied.h * Q1Shape<dim>::offset(i, d);
+                  node_local.push_back(partitioner.global_to_local(dofs[i]));
+                  node_dof.push_back(dofs[i]);
+                  node_position.push_back(x);
+                }
+            }
+          occupied.n_nodes = node_local.size() - occupied.node_begin;
+        }
+      node_arrays_valid = true;
     }
 
 

@@ -74,6 +74,17 @@ namespace scarp
         /// Their indices in the local storage of the grid vectors (owned,
         /// then ghost), for local_element() instead of a global lookup.
         std::vector<unsigned int> node_local;
+        /// What evaluate() reads, merged from the arrays above into two:
+        /// per patch cell its box, edge, 1/h and the range of its
+        /// vertices' entries, and the (node, weight) entries.
+        struct Cell
+        {
+          Point<dim>   lower, upper;
+          double       h, inv_h;
+          unsigned int entry_begin[(1u << dim) + 1];
+        };
+        std::vector<Cell>                            cells;
+        std::vector<std::pair<unsigned int, double>> entries;
 
         unsigned int
         n_nodes() const

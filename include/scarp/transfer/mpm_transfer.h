@@ -228,6 +228,10 @@ namespace scarp
         unsigned int point_begin, point_end;
       };
       std::vector<OccupiedCell> occupied_cells;
+      /// Those of the step before, and whether their node arrays still hold
+      /// (until the next setup()).
+      std::vector<OccupiedCell> previous_cells;
+      bool                      node_arrays_valid = false;
       /// Nodes of the occupied cells: index in the local storage of the
       /// grid vectors (local_element()), global dof, position.
       std::vector<unsigned int>            node_local;
