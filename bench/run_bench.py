@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Run benchmark scenes of scarp and print their speed (doc/performance.md).
 
-    bench/run_bench.py [--scarp build/scarp] [--ranks 1] [--repeat 3]
-                       [--suite joss|column|all] [--csv bench.csv]
-                       [--work DIR] [SCENE.prm ...]
+    bench/run_bench.py [--scarp [LABEL=]build/scarp ...] [--ranks 1]
+                       [--repeat 3] [--suite joss|column|all]
+                       [--csv bench.csv] [--work DIR] [SCENE.prm ...]
 
 Run from the repository root. Each scene runs --repeat times in a
 directory of its own under --work (default /tmp/scarp-bench); the figures
 of every run go to the CSV, and the table printed at the end holds the
-median over the repeats of each scene.
+median over the repeats of each scene. Several --scarp executables (say
+before=OLD/scarp after=build/scarp) are run in turn, repeat by repeat, so
+that a change of the load of a shared machine hits both alike.
 
 Figures, from the run's summary.json and statistics.csv:
 
@@ -182,16 +184,19 @@ def run_once(scarp, prm, ranks, run_dir):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scenes", nargs="*")
-    ap.add_argument("--scarp", default="build/scarp")
+    ap.add_argument("--scarp", action="append",
+                    help="[LABEL=]executable, repeatable (build/scarp)")
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--suite", choices=["joss", "column", "all", "none"],
                     default=None)
     ap.add_argument("--csv", default="bench.csv")
     ap.add_argument("--work", default="/tmp/scarp-bench")
-    ap.add_argument("--label", default="",
-                    help="a label for the CSV rows (e.g. a commit)")
     args = ap.parse_args()
+    binaries = []
+    for b in args.scarp or ["build/scarp"]:
+        label, _, path = b.rpartition("=")
+        binaries.append((label or path, path))
 
     scenes = [(os.path.splitext(os.path.basename(s))[0], s)
               for s in args.scenes]
@@ -213,24 +218,27 @@ def main():
         writer = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         if new_file:
             writer.writeheader()
-        for name, prm in scenes:
-            for r in range(args.repeat):
-                run_dir = os.path.join(args.work, "%s_np%d_%d" %
-                                       (name, args.ranks, r))
-                row = run_once(args.scarp, prm, args.ranks, run_dir)
-                row.update(label=args.label, scene=name, ranks=args.ranks,
-                           repeat=r)
-                writer.writerow(row)
-                f.flush()
-                results.setdefault(name, []).append(row)
-                print("%-24s run %d: %.3f Mps/core (wall %.1f s, cpu %.1f s)"
-                      % (name, r, row["Mps_per_core"], row["wall_s"],
-                         row["cpu_s"]), flush=True)
+        for r in range(args.repeat):
+            for name, prm in scenes:
+                for label, binary in binaries:
+                    run_dir = os.path.join(args.work, "%s_%s_np%d_%d" % (
+                        name, label.replace("/", "_"), args.ranks, r))
+                    row = run_once(binary, prm, args.ranks, run_dir)
+                    row.update(label=label, scene=name, ranks=args.ranks,
+                               repeat=r)
+                    writer.writerow(row)
+                    f.flush()
+                    results.setdefault((name, label), []).append(row)
+                    print("%-24s %-10s run %d: %.3f Mps/core (wall %.1f s, "
+                          "cpu %.1f s)" % (name, label, r,
+                                           row["Mps_per_core"],
+                                           row["wall_s"], row["cpu_s"]),
+                          flush=True)
 
     print("\nMedians over %d run(s), %d rank(s); ns per point-step and core"
           % (args.repeat, args.ranks))
-    head = "%-24s %7s %6s %6s %9s %8s %8s" % (
-        "scene", "points", "cells", "steps", "pt-steps", "Mps/core",
+    head = "%-24s %-10s %7s %6s %6s %9s %8s %8s" % (
+        "scene", "label", "points", "cells", "steps", "pt-steps", "Mps/core",
         "Mps/cpu")
     short = {"MPM step": "mpm", "non-local damage": "nonlocal",
              "sort particles": "sort", "refinement": "refine",
@@ -238,11 +246,11 @@ def main():
     for p in PHASES:
         head += " %8s" % short[p]
     print(head)
-    for name, rows in results.items():
+    for (name, label), rows in results.items():
         def med(key):
             return statistics.median(r[key] for r in rows)
-        line = "%-24s %7d %6d %6d %9.3g %8.3f %8.3f" % (
-            name, rows[-1]["points"], rows[-1]["cells"], rows[-1]["steps"],
+        line = "%-24s %-10s %7d %6d %6d %9.3g %8.3f %8.3f" % (
+            name, label, rows[-1]["points"], rows[-1]["cells"], rows[-1]["steps"],
             rows[-1]["point_steps"], med("Mps_per_core"),
             med("Mps_per_cpu_s"))
         for p in PHASES:
