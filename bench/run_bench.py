@@ -22,6 +22,8 @@ Figures, from the run's summary.json and statistics.csv:
   (point-steps / (wall time x ranks));
 * Mps/cpu: the same per second of CPU time (user + system of scarp and its
   children): on a shared machine this moves less than the wall time;
+* max RSS: peak resident memory of the run (GNU time), and that over the
+  points (bytes per point, mesh, libraries and MPI included);
 * ns per point-step of each phase of summary.json's wall_time_per_phase,
   times the ranks (per core): MPM step (P2G, grid update, G2P and the
   constitutive update), non-local damage, sort, refinement, output, setup.
@@ -148,6 +150,11 @@ def run_once(scarp, prm, ranks, run_dir):
     cmd = [os.path.abspath(scarp), os.path.abspath(prm)]
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + cmd
+    # Peak memory of this run (one rank: scarp's own; more: the largest
+    # process, mpirun or a rank).
+    rss_file = os.path.join(os.path.abspath(run_dir), "max_rss_kB")
+    if os.path.exists("/usr/bin/time"):
+        cmd = ["/usr/bin/time", "-f", "%M", "-o", rss_file] + cmd
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.time()
     with open(os.path.join(run_dir, "scarp.log"), "w") as log:
@@ -173,7 +180,12 @@ def run_once(scarp, prm, ranks, run_dir):
            "cpu_s": cpu,
            "Mps_per_core": ps / (wall * ranks) / 1e6,
            "Mps_per_cpu_s": ps / cpu / 1e6 if cpu > 0 else float("nan"),
-           "max_rss_MB": after.ru_maxrss / 1024.}
+           "max_rss_MB": float("nan"), "bytes_per_point": float("nan")}
+    if os.path.exists(rss_file):
+        with open(rss_file) as f:
+            rss_kB = float(f.read().split()[-1])
+        row["max_rss_MB"] = rss_kB / 1024.
+        row["bytes_per_point"] = rss_kB * 1024. / row["points"]
     phases = summary.get("wall_time_per_phase", {})
     for p in PHASES:
         row["ns " + p] = phases.get(p, 0.) * ranks / ps * 1e9
@@ -211,7 +223,7 @@ def main():
 
     fields = ["label", "scene", "ranks", "repeat", "points", "cells",
               "steps", "point_steps", "wall_s", "cpu_s", "Mps_per_core",
-              "Mps_per_cpu_s", "max_rss_MB"] + ["ns " + p for p in PHASES]
+              "Mps_per_cpu_s", "max_rss_MB", "bytes_per_point"] + ["ns " + p for p in PHASES]
     new_file = not os.path.exists(args.csv)
     results = {}
     with open(args.csv, "a", newline="") as f:
