@@ -149,7 +149,8 @@ def run_once(scarp, prm, ranks, run_dir):
     os.makedirs(run_dir, exist_ok=True)
     cmd = [os.path.abspath(scarp), os.path.abspath(prm)]
     if ranks > 1:
-        cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + cmd
+        cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + (
+            ["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
     # Peak memory of this run (one rank: scarp's own; more: the largest
     # process, mpirun or a rank).
     rss_file = os.path.join(os.path.abspath(run_dir), "max_rss_kB")
