@@ -26,19 +26,6 @@ namespace scarp
 {
   namespace simulation
   {
-    namespace
-    {
-      std::string
-      format_seconds(const double s)
-      {
-        const long         t = static_cast<long>(s + 0.5);
-        std::ostringstream o;
-        o << std::setfill('0') << std::setw(2) << t / 3600 << ":"
-          << std::setw(2) << (t / 60) % 60 << ":" << std::setw(2) << t % 60;
-        return o.str();
-      }
-    } // namespace
-
     template <int dim>
     Simulation<dim>::Simulation(MPI_Comm communicator, const SceneLists &lists)
       : communicator(communicator)

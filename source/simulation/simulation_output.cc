@@ -24,18 +24,15 @@ namespace scarp
 {
   namespace simulation
   {
-    namespace
+    std::string
+    format_seconds(const double s)
     {
-      std::string
-      format_seconds(const double s)
-      {
-        const long         t = static_cast<long>(s + 0.5);
-        std::ostringstream o;
-        o << std::setfill('0') << std::setw(2) << t / 3600 << ":"
-          << std::setw(2) << (t / 60) % 60 << ":" << std::setw(2) << t % 60;
-        return o.str();
-      }
-    } // namespace
+      const long         t = static_cast<long>(s + 0.5);
+      std::ostringstream o;
+      o << std::setfill('0') << std::setw(2) << t / 3600 << ":" << std::setw(2)
+        << (t / 60) % 60 << ":" << std::setw(2) << t % 60;
+      return o.str();
+    }
 
 
     template <int dim>

@@ -34,6 +34,10 @@ namespace scarp
   {
     using namespace dealii;
 
+    /// Seconds as HH:MM:SS, for the progress line and the end of a run.
+    std::string
+    format_seconds(const double s);
+
     /**
      * @brief One scene run from a parameter file: the only place that knows
      * the mesh, the particles, the materials, the stages and the outputs,
