@@ -213,9 +213,35 @@ namespace scarp
            timer.get_summary_data(TimerOutput::total_wall_time))
         phases.add(name, seconds);
       summary.add("wall_time_per_phase", phases);
-      summary.add("stages", stage_summaries);
+      // A run that ends inside a stage (interrupted, or stopped by an
+      // error) still reports what that stage has measured so far: its
+      // start, the end of its mass scaling, and the failure onset.
+      const bool ended_inside_stage =
+        how_it_ended != "completed" && how_it_ended != "stopped after failure";
+      postprocess::JsonObject stages_so_far = stage_summaries;
+      if (ended_inside_stage && stage_in_progress &&
+          current_stage < stages.size())
+        {
+          const Stage            &stage = stages[current_stage];
+          postprocess::JsonObject s;
+          s.add("end_reason", "in progress");
+          s.add("start_time", stage_start_time);
+          s.add("end_time", current_time);
+          if (stage.mass_scaling > 1)
+            {
+              s.add("mass_scaling", stage.mass_scaling);
+              s.add("mass_scaling_end_time", mass_scaling_end_time);
+            }
+          stages_so_far.add(stage.name, s);
+        }
+      summary.add("stages", stages_so_far);
       if (cliff)
-        summary.add("cliff", cliff_summary);
+        {
+          postprocess::JsonObject c = cliff_summary;
+          if (ended_inside_stage && failure_time >= 0)
+            c.add("failure_onset_s", failure_time - damage_stage_start);
+          summary.add("cliff", c);
+        }
       summary.add("max_damage", last_report.max_damage);
       summary.add("first_damage_time", first_damage_time);
       summary.add("points_removed", n_removed);

@@ -319,6 +319,10 @@ namespace scarp
         {
           failure_time = current_time;
           cliff_snapshot("failure");
+          pcout << "Cliff: failure onset at t = " << current_time << " s, "
+                << current_time - damage_stage_start
+                << " s after the start of damage (step " << step << ")"
+                << std::endl;
         }
       if (refinement_due())
         refine_mesh();

@@ -20,7 +20,6 @@ import math
 import sys
 from collections import deque
 
-out = sys.argv[1]
 failures = []
 
 
@@ -29,6 +28,25 @@ def check(ok, what):
     if not ok:
         failures.append(what)
 
+
+if sys.argv[1] == "--cut":
+    # 5. A run cut by an error inside the collapse stage (<Maximum steps>
+    #    just after the onset) reports in its summary.json the onset of the
+    #    full run (the same steps: equal to round-off) and the collapse
+    #    stage as in progress.
+    cut = json.load(open(f"{sys.argv[2]}/summary.json"))
+    full = json.load(open(f"{sys.argv[3]}/summary.json"))
+    check(cut["ended"].startswith("error"), f"cut run ended: {cut['ended']}")
+    onset_cut = cut.get("cliff", {}).get("failure_onset_s", float("nan"))
+    onset_full = full["cliff"]["failure_onset_s"]
+    check(abs(onset_cut - onset_full) <= 1e-12 * max(1.0, onset_full),
+          f"cut run reports the onset {onset_cut} (full run {onset_full})")
+    stage = cut["stages"].get("collapse", {})
+    check(stage.get("end_reason") == "in progress",
+          f"collapse stage reported in progress ({stage})")
+    sys.exit(1 if failures else 0)
+
+out = sys.argv[1]
 
 summary = json.load(open(f"{out}/summary.json"))
 check(summary["ended"].startswith("stopped after failure"),
