@@ -38,6 +38,7 @@ def main():
         ("internal_work", "internal work", None),
         ("damping_dissipation", "damping", None),
         ("boundary_dissipation", "boundary (friction)", None),
+        ("transfer_dissipation", "transfer (PIC share)", None),
         ("plastic_dissipation", "plastic dissipation", None),
         ("damage_dissipation", "damage dissipation", None),
         ("energy_residual", "balance residual", None),
@@ -45,7 +46,8 @@ def main():
     ax.plot(t, [g0 - g for g in col["gravitational_energy"]],
             label="gravitational energy released", color="k", lw=1.5)
     for key, label, _ in series:
-        ax.plot(t, col[key], label=label, lw=1)
+        if key in col:  # statistics of older runs lack the transfer column
+            ax.plot(t, col[key], label=label, lw=1)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("energy [J per m thickness in 2D]")
     ax.set_yscale("symlog", linthresh=1.0)

@@ -299,11 +299,50 @@ namespace scarp
     BoundaryConditions<dim>::apply(
       const VectorType                    &mass,
       std::array<VectorType *, dim>        velocity,
-      const std::array<VectorType *, dim> *start_velocity,
+      std::array<VectorType *, dim>       *start_velocity,
       const double                         dt,
       const std::array<VectorType *, dim> *damping_force,
       const double                         mass_scale) const
     {
+      // The conditions of one node, applied to the velocity v in place.
+      const auto constrain = [&](const Node &node, Tensor<1, dim> &v) {
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          if (node.faces & (1u << f))
+            {
+              const unsigned int axis = f / 2;
+              const double       sign = (f % 2) ? 1. : -1.; // outward
+              switch (types[f])
+                {
+                  case BoundaryType::fixed:
+                    v = 0;
+                    break;
+                  case BoundaryType::slip:
+                    v[axis] = 0;
+                    break;
+                  case BoundaryType::friction:
+                    {
+                      const double v_normal = sign * v[axis];
+                      if (v_normal > 0) // moving into the face
+                        {
+                          v[axis]                   = 0;
+                          const double v_tangential = v.norm();
+                          if (v_tangential > 0)
+                            v *= std::max(0.,
+                                          1. - friction_coefficient * v_normal /
+                                                 v_tangential);
+                        }
+                      break;
+                    }
+                  case BoundaryType::free:
+                    break;
+                }
+            }
+        if (node.faces & prescribed_bit)
+          for (unsigned int d = 0; d < dim; ++d)
+            if (!normal_only || d == prescribed_face / 2)
+              v[d] = prescribed_velocity[d];
+      };
+
       double removed = 0.;
       for (const Node &node : nodes)
         {
@@ -311,61 +350,32 @@ namespace scarp
           for (unsigned int d = 0; d < dim; ++d)
             v[d] = (*velocity[d])(node.dof);
           const Tensor<1, dim> v_free = v;
-          for (unsigned int f = 0; f < 2 * dim; ++f)
-            if (node.faces & (1u << f))
-              {
-                const unsigned int axis = f / 2;
-                const double       sign = (f % 2) ? 1. : -1.; // outward
-                switch (types[f])
-                  {
-                    case BoundaryType::fixed:
-                      v = 0;
-                      break;
-                    case BoundaryType::slip:
-                      v[axis] = 0;
-                      break;
-                    case BoundaryType::friction:
-                      {
-                        const double v_normal = sign * v[axis];
-                        if (v_normal > 0) // moving into the face
-                          {
-                            v[axis]                   = 0;
-                            const double v_tangential = v.norm();
-                            if (v_tangential > 0)
-                              v *= std::max(0.,
-                                            1. - friction_coefficient *
-                                                   v_normal / v_tangential);
-                          }
-                        break;
-                      }
-                    case BoundaryType::free:
-                      break;
-                  }
-              }
-          if (node.faces & prescribed_bit)
-            {
-              const unsigned int axis = prescribed_face / 2;
-              for (unsigned int d = 0; d < dim; ++d)
-                if (!normal_only || d == axis)
-                  {
-                    if (start_velocity)
-                      reaction_impulse[d] +=
-                        mass_scale * mass(node.dof) *
-                          (prescribed_velocity[d] - v_free[d]) +
-                        (damping_force ? dt * (*(*damping_force)[d])(node.dof)
-                                       : 0.);
-                    v[d] = prescribed_velocity[d];
-                  }
-            }
+          constrain(node, v);
           for (unsigned int d = 0; d < dim; ++d)
             (*velocity[d])(node.dof) = v[d];
-          if (start_velocity)
-            {
-              Tensor<1, dim> v_start;
-              for (unsigned int d = 0; d < dim; ++d)
-                v_start[d] = (*(*start_velocity)[d])(node.dof);
-              removed += mass(node.dof) * ((v_free - v) * (v_start + v)) / 2;
-            }
+          if (!start_velocity)
+            continue;
+          if (node.faces & prescribed_bit)
+            for (unsigned int d = 0; d < dim; ++d)
+              if (!normal_only || d == prescribed_face / 2)
+                reaction_impulse[d] +=
+                  mass_scale * mass(node.dof) * (v[d] - v_free[d]) +
+                  (damping_force ? dt * (*(*damping_force)[d])(node.dof) : 0.);
+          Tensor<1, dim> v_raw;
+          for (unsigned int d = 0; d < dim; ++d)
+            v_raw[d] = (*(*start_velocity)[d])(node.dof);
+          Tensor<1, dim> v_start = v_raw;
+          constrain(node, v_start);
+          for (unsigned int d = 0; d < dim; ++d)
+            (*(*start_velocity)[d])(node.dof) = v_start[d];
+          // The forces' work over the constrained velocities (what the
+          // stress power at the points sees) less the kinetic energy the
+          // points' FLIP update v_p + S (v - v_start) draws from the node,
+          // p . dv + m |dv|^2 / 2 with the node's P2G momentum p = m v_raw:
+          // zero where no condition acts.
+          const Tensor<1, dim> dv = v - v_start;
+          removed += mass(node.dof) * ((v_free - v_raw) * (v_start + v) / 2 -
+                                       v_raw * dv - dv.norm_square() / 2);
         }
       if (start_velocity)
         reaction_time += dt;
@@ -378,14 +388,14 @@ namespace scarp
     template double
     BoundaryConditions<2>::apply(const Vector &,
                                  std::array<Vector *, 2>,
-                                 const std::array<Vector *, 2> *,
+                                 std::array<Vector *, 2> *,
                                  double,
                                  const std::array<Vector *, 2> *,
                                  double) const;
     template double
     BoundaryConditions<3>::apply(const Vector &,
                                  std::array<Vector *, 3>,
-                                 const std::array<Vector *, 3> *,
+                                 std::array<Vector *, 3> *,
                                  double,
                                  const std::array<Vector *, 3> *,
                                  double) const;

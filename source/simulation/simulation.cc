@@ -88,6 +88,7 @@ namespace scarp
                                        "internal_work",
                                        "damping_dissipation",
                                        "boundary_dissipation",
+                                       "transfer_dissipation",
                                        "plastic_dissipation",
                                        "damage_dissipation",
                                        "material_dissipation",
@@ -104,6 +105,8 @@ namespace scarp
                                        "max_damage",
                                        "damaged_volume",
                                        "wall_time"};
+      if (body_force)
+        columns.push_back("body_force_work");
       if (reference_displacement)
         columns.push_back("reference_error");
       for (const auto &name :

@@ -28,7 +28,8 @@ namespace scarp
       // particles and the mesh travel in the triangulation's files.
       ar &current_time &dt &step &output_index &next_output;
       ar &initial_energy &internal_work &damping_dissipation
-        &boundary_dissipation &scale_of_energy &last_residual &n_removed;
+        &boundary_dissipation &transfer_dissipation &body_force_work
+          &scale_of_energy &last_residual &n_removed;
       ar &current_stage &stage_in_progress &stage_start_time &stage_start_step
         &stage_peak_kinetic &settled_since;
       ar &inertia_scale &mass_scaling_ended &mass_scaling_end_time

@@ -106,6 +106,7 @@ namespace scarp
                                internal_work,
                                damping_dissipation,
                                boundary_dissipation,
+                               transfer_dissipation,
                                r.plastic_dissipation,
                                r.damage_dissipation,
                                material_dissipation,
@@ -122,6 +123,8 @@ namespace scarp
                                r.max_damage,
                                r.damaged_volume,
                                wall_clock.wall_time()});
+      if (body_force)
+        row.push_back(body_force_work);
       if (reference_displacement)
         {
           double       norm    = 0;
@@ -204,6 +207,9 @@ namespace scarp
       if (mass_scaling_loss != 0)
         energies.add("mass_scaling_dissipation", mass_scaling_loss);
       energies.add("boundary_dissipation", boundary_dissipation);
+      energies.add("transfer_dissipation", transfer_dissipation);
+      if (body_force)
+        energies.add("body_force_work", body_force_work);
       energies.add("plastic_dissipation", last_report.plastic_dissipation);
       energies.add("damage_dissipation", last_report.damage_dissipation);
       energies.add("balance_residual", last_residual);

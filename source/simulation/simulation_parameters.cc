@@ -95,8 +95,8 @@ namespace scarp
                         Patterns::Bool(),
                         "Add this body force per unit mass [m/s^2], a "
                         "function of the reference position (x, y[, z]) and "
-                        "time t (for manufactured solutions). Its work is not "
-                        "part of the energy balance.");
+                        "time t (for manufactured solutions). Its work is "
+                        "booked in the energy balance (body_force_work).");
       prm.leave_subsection();
       prm.leave_subsection();
       prm.enter_subsection("Reference solution");
@@ -205,9 +205,10 @@ namespace scarp
                         "0.1",
                         Patterns::Double(0.),
                         "Stop when the energy balance (kinetic + "
-                        "gravitational + internal work + damping and boundary "
-                        "dissipation) has grown by more than this fraction of "
-                        "the largest energy of the run: the step is unstable.");
+                        "gravitational + internal work + damping, boundary, "
+                        "mass-scaling and transfer dissipation - body force "
+                        "work) has grown by more than this fraction of the "
+                        "largest energy of the run: the step is unstable.");
       prm.declare_entry("Points leaving the mesh",
                         "error",
                         Patterns::Selection("error|remove"),

@@ -93,6 +93,7 @@ namespace scarp
       for (unsigned int d = 0; d < dim; ++d)
         for (Vector *v : {&momentum[d],
                           &force[d],
+                          &body_force_nodal[d],
                           &velocity_old[d],
                           &velocity_new[d],
                           &velocity_remapped[d]})
@@ -219,6 +220,8 @@ namespace scarp
         {
           momentum[d] = 0;
           force[d]    = 0;
+          if (body_force)
+            body_force_nodal[d] = 0;
         }
       const auto  &pool = particle_handler.get_property_pool();
       const bool   apic = layout.has_affine;
@@ -239,14 +242,19 @@ namespace scarp
             node_local.data() + occupied.node_begin;
           const Point<dim> *node_ptr =
             node_position.data() + occupied.node_begin;
-          // Accumulators of the cell: mass, momentum d, force d (n each).
-          local_sums.assign((1 + 2 * dim) * n, 0.);
+          // Accumulators of the cell: mass, momentum d, force d and, with
+          // a body force, its share of the force d (n each): its work is
+          // booked on the grid, where it acts.
+          const bool with_body = body_force && !momentum_only;
+          local_sums.assign((1 + (with_body ? 3 : 2) * dim) * n, 0.);
           double *const local_mass = local_sums.data();
-          double       *local_momentum[dim], *local_force[dim];
+          double *local_momentum[dim], *local_force[dim], *local_body[dim];
           for (unsigned int d = 0; d < dim; ++d)
             {
               local_momentum[d] = local_mass + (1 + d) * n;
               local_force[d]    = local_mass + (1 + dim + d) * n;
+              local_body[d] =
+                with_body ? local_mass + (1 + 2 * dim + d) * n : nullptr;
             }
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
                ++q)
@@ -284,13 +292,14 @@ namespace scarp
               const double volume = p[layout.reference_volume] * J;
               const SymmetricTensor<2, 3> sigma =
                 layout.get_stress(p, layout.stress);
-              Tensor<1, dim> acceleration = gravity;
-              if (body_force)
+              Tensor<1, dim> acceleration = gravity, body;
+              if (with_body)
                 {
                   const Point<dim> X(
                     layout.get_vector(p, layout.reference_position));
                   for (unsigned int d = 0; d < dim; ++d)
-                    acceleration[d] += body_force->value(X, d);
+                    body[d] = body_force->value(X, d);
+                  acceleration += body;
                 }
               for (unsigned int e = e0; e < e1; ++e)
                 {
@@ -308,6 +317,9 @@ namespace scarp
                       local_momentum[d][i] += w * vi[d];
                       local_force[d][i] += f[d];
                     }
+                  if (with_body)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      local_body[d][i] += w * body[d];
                 }
             }
           if (add_directly)
@@ -322,6 +334,9 @@ namespace scarp
                       if (!momentum_only)
                         force[d].local_element(local_ptr[i]) +=
                           local_force[d][i];
+                      if (with_body)
+                        body_force_nodal[d].local_element(local_ptr[i]) +=
+                          local_body[d][i];
                     }
                 }
               continue;
@@ -342,6 +357,8 @@ namespace scarp
               distribute(local_momentum[d], momentum[d]);
               if (!momentum_only)
                 distribute(local_force[d], force[d]);
+              if (with_body)
+                distribute(local_body[d], body_force_nodal[d]);
             }
         }
       mass.compress(VectorOperation::add);
@@ -350,6 +367,8 @@ namespace scarp
           momentum[d].compress(VectorOperation::add);
           if (!momentum_only)
             force[d].compress(VectorOperation::add);
+          if (body_force && !momentum_only)
+            body_force_nodal[d].compress(VectorOperation::add);
         }
     }
 
@@ -361,7 +380,7 @@ namespace scarp
                                  StepReport    &report)
     {
       const unsigned int n_owned      = mass.locally_owned_size();
-      double             damping_work = 0;
+      double             damping_work = 0, body_work = 0;
       for (unsigned int k = 0; k < n_owned; ++k)
         {
           const double m = mass.local_element(k);
@@ -413,19 +432,29 @@ namespace scarp
           new_ptr[d]  = &velocity_new[d];
           damp_ptr[d] = &force[d]; // holds the damping force here
         }
-      grid.boundary_conditions().apply(mass, old_ptr);
-      // The reaction impulses act on the inertia m_s m.
+      // Constrains the start velocity too. The reaction impulses act on the
+      // inertia m_s m.
       report.boundary_dissipation +=
         mass_scale * grid.boundary_conditions().apply(
                        mass, new_ptr, &old_ptr, dt, &damp_ptr, mass_scale);
-      if (damping.type != Damping::Type::none)
+      // The work of the damping and body forces over the constrained
+      // velocities, (v_start + v) / 2, as that of the internal forces
+      // (the stress power at the points sees the constrained velocities).
+      if (damping.type != Damping::Type::none || body_force)
         for (unsigned int k = 0; k < n_owned; ++k)
           if (mass.local_element(k) > node_cutoff[k])
             for (unsigned int d = 0; d < dim; ++d)
-              damping_work += dt * force[d].local_element(k) * 0.5 *
-                              (velocity_old[d].local_element(k) +
-                               velocity_new[d].local_element(k));
+              {
+                damping_work += dt * force[d].local_element(k) * 0.5 *
+                                (velocity_old[d].local_element(k) +
+                                 velocity_new[d].local_element(k));
+                if (body_force)
+                  body_work += dt * body_force_nodal[d].local_element(k) * 0.5 *
+                               (velocity_old[d].local_element(k) +
+                                velocity_new[d].local_element(k));
+              }
       report.damping_dissipation -= damping_work;
+      report.body_force_work += body_work;
 
       for (unsigned int d = 0; d < dim; ++d)
         for (Vector *v : {&velocity_old[d], &velocity_new[d]})
@@ -586,6 +615,11 @@ namespace scarp
                       grad_v += outer_product(v_new[shape_node[e]] - v_grid,
                                               shape_gradient[e]);
                   Tensor<1, dim> v;
+                  // The FLIP update, v_p + S (v_new - v_start): the one the
+                  // energy balance follows (it passes on the grid's
+                  // changes and keeps the rest of the point's velocity).
+                  const Tensor<1, dim> v_flip =
+                    layout.get_vector(p, layout.velocity) + dv;
                   if (apic)
                     {
                       v = v_grid;
@@ -595,6 +629,11 @@ namespace scarp
                     v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
                         (1. - alpha) * v_grid;
                   layout.set_vector(p, layout.velocity, v);
+                  // What the PIC share (APIC: the grid velocity) took from
+                  // the FLIP update (doc/user_guide.md, energy balance).
+                  report.transfer_dissipation +=
+                    mass_scale * 0.5 * p[layout.mass] *
+                    (v_flip.norm_square() - v.norm_square());
                   const Point<dim>     x_old = x0 + h * xi;
                   const Tensor<1, dim> dx    = dt * v_grid;
                   const Point<dim>     x_new = pool.get_location(handle) + dx;

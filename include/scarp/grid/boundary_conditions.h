@@ -63,22 +63,31 @@ namespace scarp
       /**
        * Apply the conditions to the nodal velocity components @p velocity
        * (one vector per direction, indexed by global dof). If
-       * @p start_velocity (the constrained velocity at the start of the
-       * step) is given, returns the energy the boundary removed over the
-       * step: the work of the reaction impulse m (v_free - v) against the
-       * mean velocity (v_start + v)/2; it is zero on fixed and slip faces
-       * and the friction loss on friction faces. The call with
+       * @p start_velocity (the velocity of P2G at the start of the step,
+       * v_r) is given, the conditions are applied to it too (v_s), and the
+       * call returns the energy the boundary removed from the points over
+       * the step: the work of the nodal forces over the constrained
+       * velocities, m (v_free - v_r) . (v_s + v)/2 (what the stress power
+       * at the points sees), less the kinetic energy the points' FLIP
+       * update v_p + S (v - v_s) draws from the node, m v_r . dv + m
+       * |dv|^2/2 with dv = v - v_s. It is zero where no condition acts, on
+       * fixed faces and on slip faces; on friction faces the friction the
+       * points feel (a normal velocity they bring into the face is taken
+       * from the start and the end velocity alike, and FLIP points keep
+       * the tangential velocity that removes); the negative of the work
+       * of a prescribed velocity, dt f . v_prescribed. The call with
        * @p start_velocity also adds the step (of length @p dt) to the
        * reaction on the prescribed region; @p damping_force (the grid
        * damping force included in @p velocity) is taken out of it: damping
        * is a numerical force of the grid, not one the material exerts. With
-       * mass scaling the nodes' inertia is @p mass_scale times @p mass.
+       * mass scaling the nodes' inertia is @p mass_scale times @p mass (the
+       * energy returned is that of @p mass: the caller scales it).
        */
       template <typename VectorType>
       double
       apply(const VectorType                    &mass,
             std::array<VectorType *, dim>        velocity,
-            const std::array<VectorType *, dim> *start_velocity = nullptr,
+            std::array<VectorType *, dim>       *start_velocity = nullptr,
             const double                         dt             = 0,
             const std::array<VectorType *, dim> *damping_force  = nullptr,
             const double                         mass_scale     = 1) const;

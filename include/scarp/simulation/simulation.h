@@ -160,11 +160,39 @@ namespace scarp
       /// same norm of u(X,t) itself in @p norm if given. -1 without one.
       double
       reference_error(double *norm = nullptr) const;
-      /// Cumulative energy bookkeeping.
+      /// Cumulative energy bookkeeping: the balance residual
+      /// E_kin + E_grav + W_int + D_damping + D_boundary + D_mass_scaling +
+      /// D_transfer - W_body - E_0 after the last step.
       double
       energy_residual() const
       {
         return last_residual;
+      }
+      /// The terms of the balance that are sums over the steps.
+      double
+      transfer_dissipation_total() const
+      {
+        return transfer_dissipation;
+      }
+      double
+      body_force_work_total() const
+      {
+        return body_force_work;
+      }
+      double
+      internal_work_total() const
+      {
+        return internal_work;
+      }
+      double
+      boundary_dissipation_total() const
+      {
+        return boundary_dissipation;
+      }
+      double
+      damping_dissipation_total() const
+      {
+        return damping_dissipation;
       }
       double
       energy_scale() const
@@ -324,6 +352,9 @@ namespace scarp
       double       settled_since        = -1;
       double       last_progress_wall   = -1e9;
       double       first_damage_time    = -1;
+      /// Kinetic energy the transfers removed and the work of the body
+      /// force (StepReport), summed over the steps.
+      double transfer_dissipation = 0, body_force_work = 0;
       /// Mass scaling of the current step (Stage::mass_scaling while it
       /// lasts, else 1), whether it has ended in this stage, when, and the
       /// kinetic energy booked as dissipated at the switches.

@@ -292,6 +292,9 @@ namespace scarp
       Vector                  mass;
       std::array<Vector, dim> momentum, force, velocity_old, velocity_new,
         velocity_remapped;
+      /// The body force's share of the nodal force (only with a body
+      /// force), for its work.
+      std::array<Vector, dim> body_force_nodal;
     };
   } // namespace transfer
 } // namespace scarp

@@ -27,6 +27,8 @@ namespace scarp
       double internal_work        = 0; ///< dt sum V sigma : D (this step)
       double damping_dissipation  = 0; ///< energy removed by damping
       double boundary_dissipation = 0; ///< energy removed by the boundaries
+      double transfer_dissipation = 0; ///< removed by P2G and G2P (below)
+      double body_force_work      = 0; ///< by <Physics/Body force>, on grid
       double mass                 = 0;
       double plastic_dissipation  = 0; ///< cumulative, from material states
       double damage_dissipation   = 0; ///< cumulative, from material states
@@ -34,6 +36,14 @@ namespace scarp
       double n_points             = 0;
       std::array<double, 3> momentum{{0, 0, 0}};
       std::array<double, 3> angular_momentum{{0, 0, 0}};
+      // transfer_dissipation: (points before P2G - grid after P2G) + (grid
+      // after its update - points after G2P), kinetic energies of the
+      // mass-scaled inertia; negative where a transfer adds energy (APIC's
+      // affine part, FLIP points that keep what a boundary took from the
+      // start-of-step grid velocity). body_force_work: dt f_b . (v_start +
+      // v_free) / 2 summed over the nodes, the body force's exact share of
+      // the grid's energy change.
+
       // Maxima (reduced with MPI_MAX).
       double max_speed  = 0; ///< largest |v| (|v|^2 before reduce())
       double max_damage = 0;
