@@ -5,6 +5,7 @@
 
 #include "../common/scene_runner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -96,7 +97,10 @@ namespace
            "    set Function constants = " +
            k + "\n    set Function expression = " + bx + "; " + by +
            "\n  end\nend\nsubsection Stage run\n  set End time = 0.02\nend\n"
-           "subsection Stability\n  set Energy growth tolerance = 1e30\nend\n"
+           // At CFL 0.5 the balance's first-order time error reaches 10.6 %
+           // of the energy seen so far at step 13 (8 % of the run's);
+           // methods_mms_energy_balance shows it halves with dt.
+           "subsection Stability\n  set Energy growth tolerance = 0.2\nend\n"
            "subsection Reference solution\n  set Enabled = true\n"
            "  set Function constants = " +
            k + "\n  set Function expression = " + ux + "; " + uy + "\nend\n";
@@ -143,6 +147,46 @@ namespace
       max_relative_error(mms(1. / 16) + transfer("Q1", "FLIP", "USL"), 0.02);
     out() << "  MMS Q1/FLIP/USL: e(1/16) = " << q1 << std::endl;
     check(e2 < 0.5 * q1, "MMS at h = 1/16: GIMP error below half of Q1's");
+  }
+
+  // The energy balance of the manufactured solution (issue 11): its body
+  // force does work (body_force_work), and with it and the transfers' loss
+  // booked the residual is the time-integration error, first order in dt:
+  // measured 8.2 %, 3.8 % and 1.9 % of the energy scale at CFL 0.5, 0.25
+  // and 0.125 (omega dt = 0.15 at CFL 0.5: the solution turns its energy
+  // between motion and body-force work in 40 steps a period). At 0.25 and
+  // 0.125 the run keeps the default growth tolerance (10 %); bound 5 % at
+  // 0.25, ratio 0.6 at half dt.
+  void
+  mms_energy_balance()
+  {
+    double       residual[2], scale[2], work[2], transfer_loss[2];
+    const double cfl[2] = {0.25, 0.125};
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        auto sim = scarp_test::make_scene<2>(
+          mms(1. / 8) + transfer("GIMP", "FLIP", "USL", cfl[k]) +
+          "subsection Stability\n  set Energy growth tolerance = 0.1\nend\n");
+        residual[k] = 0;
+        for (unsigned int n = 1; n <= 40; ++n)
+          {
+            sim->run_until(0.02 * n / 40);
+            residual[k] =
+              std::max(residual[k], std::abs(sim->energy_residual()));
+          }
+        scale[k]         = sim->energy_scale();
+        work[k]          = sim->body_force_work_total();
+        transfer_loss[k] = sim->transfer_dissipation_total();
+        out() << "  MMS GIMP/FLIP/USL h = 1/8, CFL " << cfl[k]
+              << ": max |residual| " << residual[k] << " = "
+              << residual[k] / scale[k] << " of the energy scale " << scale[k]
+              << "; body force work " << work[k] << ", transfer dissipation "
+              << transfer_loss[k] << std::endl;
+      }
+    check(residual[0] < 0.05 * scale[0],
+          "MMS residual below 5 % of the energy scale at CFL 0.25");
+    check(residual[1] < 0.6 * residual[0],
+          "MMS residual falls with the time step (at most 0.6x at half dt)");
   }
 
   // Vibrating bar, v0 = 0.001 (amplitude 1.6e-3, no point crosses a face:
@@ -272,6 +316,7 @@ main(int argc, char **argv)
   return run_cases(argc,
                    argv,
                    {{"mms_order", mms_order},
+                    {"mms_energy_balance", mms_energy_balance},
                     {"bar_order", bar_order},
                     {"gimp_crossing", gimp_crossing},
                     {"unstable_cfl", unstable_cfl},
