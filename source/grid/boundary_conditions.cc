@@ -368,14 +368,21 @@ namespace scarp
           constrain(node, v_start);
           for (unsigned int d = 0; d < dim; ++d)
             (*(*start_velocity)[d])(node.dof) = v_start[d];
-          // The forces' work over the constrained velocities (what the
-          // stress power at the points sees) less the kinetic energy the
-          // points' FLIP update v_p + S (v - v_start) draws from the node,
-          // p . dv + m |dv|^2 / 2 with the node's P2G momentum p = m v_raw:
-          // zero where no condition acts.
           const Tensor<1, dim> dv = v - v_start;
-          removed += mass(node.dof) * ((v_free - v_raw) * (v_start + v) / 2 -
-                                       v_raw * dv - dv.norm_square() / 2);
+          if (node.faces & prescribed_bit)
+            // A prescribed velocity reaches the stress and, through the
+            // PIC share, the points from the first step on: the work of its
+            // whole reaction impulse against (v_start + v)/2 (a sudden
+            // start is an inelastic impact).
+            removed += mass(node.dof) * ((v_free - v) * (v_start + v)) / 2;
+          else
+            // The forces' work over the constrained velocities (what the
+            // stress power at the points sees) less the kinetic energy the
+            // points' FLIP update v_p + S (v - v_start) draws from the
+            // node, p . dv + m |dv|^2 / 2 with the node's P2G momentum
+            // p = m v_raw: zero where no condition acts.
+            removed += mass(node.dof) * ((v_free - v_raw) * (v_start + v) / 2 -
+                                         v_raw * dv - dv.norm_square() / 2);
         }
       if (start_velocity)
         reaction_time += dt;

@@ -74,8 +74,10 @@ namespace scarp
        * fixed faces and on slip faces; on friction faces the friction the
        * points feel (a normal velocity they bring into the face is taken
        * from the start and the end velocity alike, and FLIP points keep
-       * the tangential velocity that removes); the negative of the work
-       * of a prescribed velocity, dt f . v_prescribed. The call with
+       * the tangential velocity that removes); on a prescribed velocity
+       * (which reaches the stress and the PIC share from the first step)
+       * the work of its whole reaction impulse m (v_free - v) against
+       * (v_s + v)/2, negative when it drives the material. The call with
        * @p start_velocity also adds the step (of length @p dt) to the
        * reaction on the prescribed region; @p damping_force (the grid
        * damping force included in @p velocity) is taken out of it: damping
