@@ -2,6 +2,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <scarp/base/exceptions.h>
+#include <scarp/transfer/f_bar.h>
 #include <scarp/transfer/mpm_transfer.h>
 #include <scarp/transfer/q1_shape.h>
 
@@ -560,6 +561,29 @@ namespace scarp
       auto &v_stress = local_v_stress;
       auto &empty    = local_empty;
 
+      const bool f_bar =
+        parameters.volumetric_averaging == VolumetricAveraging::f_bar;
+      // Velocity gradient of a point from its shape entries [e0, e1).
+      const auto velocity_gradient = [&](const unsigned int e0,
+                                         const unsigned int e1) {
+        Tensor<1, dim> v_point;
+        for (unsigned int e = e0; e < e1; ++e)
+          v_point += shape_value[e] * v_stress[shape_node[e]];
+        Tensor<2, dim> L;
+        for (unsigned int e = e0; e < e1; ++e)
+          if (!empty[shape_node[e]])
+            L += outer_product(v_stress[shape_node[e]] - v_point,
+                               shape_gradient[e]);
+        return L;
+      };
+      // Cayley (midpoint) increment: exactly a rotation when L is a spin,
+      // so rigid rotation creates no stress.
+      const auto cayley_increment = [dt](const Tensor<2, dim> &L) {
+        const Tensor<2, dim> half_step = 0.5 * dt * L;
+        return Tensor<2, dim>(invert(unit_symmetric_tensor<dim>() - half_step) *
+                              (unit_symmetric_tensor<dim>() + half_step));
+      };
+
       for (const OccupiedCell &occupied : occupied_cells)
         {
           const double        h     = occupied.h;
@@ -591,6 +615,30 @@ namespace scarp
               }
           for (auto &b : batches)
             b.clear();
+          // F-bar: the increments of all points of the cell first, then
+          // their common volume change (transfer/f_bar.h).
+          if (update_stress && f_bar)
+            {
+              const unsigned int first    = occupied.point_begin;
+              const unsigned int n_points = occupied.point_end - first;
+              cell_L.resize(n_points);
+              cell_delta_F.resize(n_points);
+              cell_volume.resize(n_points);
+              for (unsigned int i = 0; i < n_points; ++i)
+                {
+                  const double *p = point_properties[first + i];
+                  cell_L[i]       = velocity_gradient(shape_begin[first + i],
+                                                shape_begin[first + i + 1]);
+                  cell_delta_F[i] = cayley_increment(cell_L[i]);
+                  cell_volume[i] =
+                    p[layout.reference_volume] *
+                    determinant(
+                      layout.get_matrix(p, layout.deformation_gradient));
+                }
+              apply_f_bar<dim>(cell_delta_F.data(),
+                               cell_volume.data(),
+                               n_points);
+            }
 
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
                ++q)
@@ -661,20 +709,13 @@ namespace scarp
                 }
               if (update_stress)
                 {
-                  Tensor<1, dim> v_point;
-                  for (unsigned int e = e0; e < e1; ++e)
-                    v_point += shape_value[e] * v_stress[shape_node[e]];
-                  Tensor<2, dim> L;
-                  for (unsigned int e = e0; e < e1; ++e)
-                    if (!empty[shape_node[e]])
-                      L += outer_product(v_stress[shape_node[e]] - v_point,
-                                         shape_gradient[e]);
-                  // Cayley (midpoint) increment: exactly a rotation when L
-                  // is a spin, so rigid rotation creates no stress.
-                  const Tensor<2, dim> half_step = 0.5 * dt * L;
+                  // With F-bar, L stays the point's own (the stress power
+                  // below is the work of the grid forces, which use it).
+                  const unsigned int   i = q - occupied.point_begin;
+                  const Tensor<2, dim> L =
+                    f_bar ? cell_L[i] : velocity_gradient(e0, e1);
                   const Tensor<2, dim> dF =
-                    invert(unit_symmetric_tensor<dim>() - half_step) *
-                    (unit_symmetric_tensor<dim>() + half_step);
+                    f_bar ? cell_delta_F[i] : cayley_increment(L);
                   const Tensor<2, dim> F =
                     dF * layout.get_matrix(p, layout.deformation_gradient);
                   layout.set_matrix(p, layout.deformation_gradient, F);

@@ -46,6 +46,21 @@ namespace scarp
         "cell: smooth gradients, no cell-crossing noise, 3^dim instead of "
         "2^dim nodes per point. Works on uniform and refined meshes (across "
         "coarse-fine interfaces); doc/refinement.md.");
+      prm.declare_entry(
+        "Volumetric averaging",
+        "none",
+        Patterns::Selection("none|F-bar"),
+        "none: every point deforms with its own increment dF = dF(grad v). "
+        "F-bar: against volumetric locking of nearly incompressible or "
+        "isochoric plastic flow: the volume change det(dF) of each point is "
+        "replaced by the mean over the points of its cell (weighted by their "
+        "volumes at the start of the step), the isochoric part of dF is kept, "
+        "dFbar = (dJbar/dJ)^(1/dim) dF; the stress, F and the point volume "
+        "follow dFbar, the grid forces and the internal work the unmodified "
+        "velocity gradient. The cell is the active cell that holds the point "
+        "(any level of a refined mesh; with Q1 or GIMP); a cell's points are "
+        "on the rank that owns it, so runs on any number of ranks agree. "
+        "doc/examples.md (Prandtl's footing), doc/stability.md.");
       prm.leave_subsection();
     }
 
@@ -58,12 +73,15 @@ namespace scarp
       velocity_transfer =
         transfer == "APIC" ? VelocityTransfer::apic : VelocityTransfer::flip;
       flip_fraction = transfer == "PIC" ? 0. : prm.get_double("FLIP fraction");
-      scheme        = prm.get("Update scheme") == "USL" ? UpdateScheme::usl :
-                                                          UpdateScheme::musl;
+      scheme        = prm.get("Update scheme") == "USL" ? UpdateScheme::usl
+                                                        : UpdateScheme::musl;
       mass_cutoff   = prm.get_double("Small mass cutoff");
-      shape_functions = prm.get("Shape functions") == "GIMP"
-                          ? ShapeFunctions::gimp
-                          : ShapeFunctions::q1;
+      shape_functions      = prm.get("Shape functions") == "GIMP"
+                               ? ShapeFunctions::gimp
+                               : ShapeFunctions::q1;
+      volumetric_averaging = prm.get("Volumetric averaging") == "F-bar"
+                               ? VolumetricAveraging::f_bar
+                               : VolumetricAveraging::none;
       prm.leave_subsection();
     }
   } // namespace transfer

@@ -14,8 +14,9 @@ namespace
 {
   constexpr int dim = 2;
 
+  /// @p transfer_extra: more Transfer entries (F-bar).
   std::string
-  scene()
+  scene(const std::string &transfer_extra = "")
   {
     return scene_header(dim, "run", "a, b") +
            material_text("linear elastic", 1000, 0.3, 1000) +
@@ -25,14 +26,15 @@ namespace
                      {"free", "free", "free", "free"}) +
            body_text("a", ball_shape({0.2, 0.2}, 0.2), 2, "0.1; 0.1") +
            body_text("b", ball_shape({0.8, 0.8}, 0.2), 2, "-0.1; -0.1") +
-           run_text({0, -0.05}, 0.5, 2.5, "FLIP", "MUSL");
+           run_text(
+             {0, -0.05}, 0.5, 2.5, "FLIP", "MUSL", 1e30, "", transfer_extra);
   }
 
   void
-  compare()
+  compare(const std::string &transfer_extra)
   {
-    auto               parallel = make_scene<dim>(scene(), MPI_COMM_WORLD);
-    auto               serial   = make_scene<dim>(scene(), MPI_COMM_SELF);
+    auto parallel = make_scene<dim>(scene(transfer_extra), MPI_COMM_WORLD);
+    auto serial   = make_scene<dim>(scene(transfer_extra), MPI_COMM_SELF);
     const unsigned int n_ranks =
       Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
     const auto local = Utilities::MPI::sum(
@@ -114,5 +116,11 @@ namespace
 int
 main(int argc, char **argv)
 {
-  return run_cases(argc, argv, {{"compare", compare}});
+  // compare_fbar: the same with F-bar, whose cell averages need all points
+  // of a cell on one rank (they are: a cell's points live on its owner).
+  return run_cases(argc,
+                   argv,
+                   {{"compare", [] { compare(""); }},
+                    {"compare_fbar",
+                     [] { compare("  set Volumetric averaging = F-bar\n"); }}});
 }

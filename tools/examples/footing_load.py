@@ -3,6 +3,7 @@
 
     footing_load.py RUN_DIR [--half-width 0.5] [--velocity 0.05] [--c 10e3]
                     [--phi 20] [--plot-load FILE.png] [--plot-pressure FILE.png]
+                    [--compare RUN_DIR LABEL] [--label LABEL]
 
 q = reaction_y / (B/2) (the half footing of the symmetric model), settlement
 v t. Prints Prandtl's q_u = c N_c, the largest q, the limit load q_lim (the
@@ -12,6 +13,9 @@ median spread of the pressure within a cell under the footing and far from
 it (locking), as `name = value` lines. --plot-pressure draws the mean pressure
 p = -(s_xx + s_yy + s_zz)/3 at the points of the last output (a
 checkerboard of p from cell to cell would be volumetric locking).
+--compare adds the load curve of another run (e.g. without F-bar) to
+--plot-load, and the pressure of its last output as a second panel of
+--plot-pressure; --label names this run in the legends.
 """
 import argparse
 import csv
@@ -42,6 +46,8 @@ ap.add_argument("--window", type=float, nargs=2, default=[0.004, 0.009])
 ap.add_argument("--cell-size", type=float, default=0.05)
 ap.add_argument("--plot-load", default=None)
 ap.add_argument("--plot-pressure", default=None)
+ap.add_argument("--compare", nargs=2, default=None, metavar=("RUN", "LABEL"))
+ap.add_argument("--label", default="scarp")
 args = ap.parse_args()
 
 qu, nc, nq = prandtl(args.c, args.phi)
@@ -90,7 +96,13 @@ if args.plot_load or args.plot_pressure:
     import matplotlib.pyplot as plt
 if args.plot_load:
     fig, ax = plt.subplots(figsize=(5.5, 3.5))
-    ax.plot([x / B for x in s], [x / args.c for x in q], "b-", label="scarp")
+    ax.plot([x / B for x in s], [x / args.c for x in q], "b-", label=args.label)
+    if args.compare:
+        other = list(csv.DictReader(open(os.path.join(args.compare[0], "statistics.csv"))))[1:]
+        q_other = [float(r["reaction_y"]) / args.half_width for r in other]
+        ax.plot([args.velocity * float(r["time"]) / B for r in other],
+                [x / args.c for x in q_other], "r-", lw=0.8, label=args.compare[1])
+        q = q + q_other
     ax.axhline(nc, color="k", ls="--", label="Prandtl N_c = %.2f" % nc)
     ax.set_xlabel("settlement / B")
     ax.set_ylabel("q / c")
@@ -100,21 +112,28 @@ if args.plot_load:
     fig.tight_layout()
     fig.savefig(args.plot_load, dpi=150)
 if args.plot_pressure:
-    p = read_particles(last_output(args.run))
-    pr = [-(a + b + c) / 3 / 1e3 for a, b, c in zip(p["stress_xx"], p["stress_yy"], p["stress_zz"])]
-    # The region around the footing: 4 B/2 wide, 3 B/2 deep.
-    top = max(p["y"])
-    keep = [i for i in range(len(pr)) if p["x"][i] <= 4 * args.half_width
-            and p["y"][i] >= top - 3 * args.half_width]
-    vmax = max(abs(pr[i]) for i in keep)
-    fig, ax = plt.subplots(figsize=(7, 4.2))
-    sc = ax.scatter([p["x"][i] for i in keep], [p["y"][i] for i in keep],
-                    c=[pr[i] for i in keep], s=4, cmap="RdBu_r", rasterized=True,
-                    vmin=-vmax, vmax=vmax)
-    fig.colorbar(sc, ax=ax, label="mean pressure p [kPa]")
-    ax.plot([0, args.half_width], [max(p["y"])] * 2, "k-", lw=3)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    runs = [(args.run, args.label)] + ([tuple(args.compare)] if args.compare else [])
+    panels = []
+    for run, label in runs:
+        p = read_particles(last_output(run))
+        pr = [-(a + b + c) / 3 / 1e3 for a, b, c in zip(p["stress_xx"], p["stress_yy"], p["stress_zz"])]
+        # The region around the footing: 4 B/2 wide, 3 B/2 deep.
+        top = max(p["y"])
+        keep = [i for i in range(len(pr)) if p["x"][i] <= 4 * args.half_width
+                and p["y"][i] >= top - 3 * args.half_width]
+        panels.append((p, pr, keep, top, label))
+    vmax = max(abs(pr[i]) for _, pr, keep, _, _ in panels for i in keep)
+    fig, axes = plt.subplots(len(panels), 1, figsize=(7, 4.2 * len(panels)), squeeze=False)
+    for ax, (p, pr, keep, top, label) in zip(axes[:, 0], panels):
+        sc = ax.scatter([p["x"][i] for i in keep], [p["y"][i] for i in keep],
+                        c=[pr[i] for i in keep], s=4, cmap="RdBu_r", rasterized=True,
+                        vmin=-vmax, vmax=vmax)
+        fig.colorbar(sc, ax=ax, label="mean pressure p [kPa]")
+        ax.plot([0, args.half_width], [top] * 2, "k-", lw=3)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        if len(panels) > 1:
+            ax.set_title(label)
     fig.tight_layout()
     fig.savefig(args.plot_pressure, dpi=150)

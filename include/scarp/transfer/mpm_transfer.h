@@ -270,6 +270,10 @@ namespace scarp
         }
       };
       std::vector<MaterialScratch> material_scratch;
+      /// F-bar scratch of one cell: its points' velocity gradients,
+      /// deformation increments and volumes at the start of the step.
+      std::vector<Tensor<2, dim>> cell_L, cell_delta_F;
+      std::vector<double>         cell_volume;
       /// Per-cell scratch of the sweeps: P2G accumulators (mass, then dim
       /// momentum and dim force components of n nodes each), G2P nodal
       /// velocities and empty-node flags.

@@ -30,17 +30,27 @@ namespace scarp
       gimp, ///< GIMP on any mesh (transfer/gimp_patches.h)
     };
 
+    /// How the volume change of the points' deformation increments is
+    /// treated (volumetric locking).
+    enum class VolumetricAveraging
+    {
+      none,  ///< each point keeps its own increment
+      f_bar, ///< the volume change is the mean of the cell's points
+    };
+
     /**
      * @brief Choices of the explicit MPM step: velocity transfer, update
-     * scheme and the small-mass cutoff of the grid solve.
+     * scheme, shape functions, volumetric averaging (F-bar) and the
+     * small-mass cutoff of the grid solve.
      */
     struct TransferParameters
     {
-      VelocityTransfer velocity_transfer = VelocityTransfer::flip;
-      double           flip_fraction     = 0.99;
-      UpdateScheme     scheme            = UpdateScheme::musl;
-      double           mass_cutoff       = 1e-5;
-      ShapeFunctions   shape_functions   = ShapeFunctions::q1;
+      VelocityTransfer    velocity_transfer    = VelocityTransfer::flip;
+      double              flip_fraction        = 0.99;
+      UpdateScheme        scheme               = UpdateScheme::musl;
+      double              mass_cutoff          = 1e-5;
+      ShapeFunctions      shape_functions      = ShapeFunctions::q1;
+      VolumetricAveraging volumetric_averaging = VolumetricAveraging::none;
 
       static void
       declare_parameters(ParameterHandler &prm);
