@@ -233,6 +233,8 @@ namespace scarp
       const bool add_directly =
         parameters.shape_functions == ShapeFunctions::gimp ||
         grid.constraints().n_constraints() == 0;
+      const bool f_bar =
+        parameters.volumetric_averaging == VolumetricAveraging::f_bar;
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
@@ -256,6 +258,34 @@ namespace scarp
               local_force[d]    = local_mass + (1 + dim + d) * n;
               local_body[d] =
                 with_body ? local_mass + (1 + 2 * dim + d) * n : nullptr;
+            }
+          // F-bar: the stress deforms with the cell's mean volume change,
+          // so its mean in-plane normal stress acts through the cell's
+          // volume-weighted mean of the gradients: each point's is replaced
+          // by the cell's. The grid forces then do the work the stresses
+          // take (sigma : Dbar); with each point's own, dilatant plastic
+          // flow (pressures that differ within a cell) fed energy into the
+          // motion without bound (doc/examples.md, section 3).
+          double mean_normal_stress = 0;
+          if (f_bar && !momentum_only)
+            {
+              double sum_v = 0;
+              for (unsigned int q = occupied.point_begin;
+                   q < occupied.point_end;
+                   ++q)
+                {
+                  const double *p = point_properties[q];
+                  const double  volume =
+                    p[layout.reference_volume] *
+                    determinant(
+                      layout.get_matrix(p, layout.deformation_gradient));
+                  const SymmetricTensor<2, 3> sigma =
+                    layout.get_stress(p, layout.stress);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    mean_normal_stress += volume * sigma[d][d] / dim;
+                  sum_v += volume;
+                }
+              mean_normal_stress /= sum_v;
             }
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
                ++q)
@@ -290,9 +320,16 @@ namespace scarp
                 }
               const double J =
                 determinant(layout.get_matrix(p, layout.deformation_gradient));
-              const double volume = p[layout.reference_volume] * J;
-              const SymmetricTensor<2, 3> sigma =
-                layout.get_stress(p, layout.stress);
+              const double          volume = p[layout.reference_volume] * J;
+              SymmetricTensor<2, 3> sigma = layout.get_stress(p, layout.stress);
+              if (f_bar)
+                {
+                  double normal = 0;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    normal += sigma[d][d] / dim;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    sigma[d][d] += mean_normal_stress - normal;
+                }
               Tensor<1, dim> acceleration = gravity, body;
               if (with_body)
                 {
@@ -638,6 +675,21 @@ namespace scarp
               apply_f_bar<dim>(cell_delta_F.data(),
                                cell_volume.data(),
                                n_points);
+              // The rate of the stress power: Lbar, whose trace is the
+              // cell's mean (the work of the grid forces of P2G).
+              double sum_v = 0, mean_trace = 0;
+              for (unsigned int i = 0; i < n_points; ++i)
+                {
+                  mean_trace += cell_volume[i] * trace(cell_L[i]);
+                  sum_v += cell_volume[i];
+                }
+              mean_trace /= sum_v;
+              for (unsigned int i = 0; i < n_points; ++i)
+                {
+                  const double shift = (mean_trace - trace(cell_L[i])) / dim;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    cell_L[i][d][d] += shift;
+                }
             }
 
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
@@ -709,8 +761,8 @@ namespace scarp
                 }
               if (update_stress)
                 {
-                  // With F-bar, L stays the point's own (the stress power
-                  // below is the work of the grid forces, which use it).
+                  // With F-bar, dF is dFbar and L (for the stress power
+                  // only) Lbar.
                   const unsigned int   i = q - occupied.point_begin;
                   const Tensor<2, dim> L =
                     f_bar ? cell_L[i] : velocity_gradient(e0, e1);

@@ -2,8 +2,8 @@
 // increment of one cell against the hand-computed form, and the wiring in
 // the MPM step: with F-bar all points that stayed in one cell share their
 // volume ratio J, without it they do not (Q1 and GIMP, MUSL and USL, 2D and
-// 3D). The physics (the undrained footing) is tests/examples/; 1 rank = 2
-// ranks is core_parallel_fbar.
+// 3D, a mesh with cells of two sizes). The physics (the undrained footing) is
+// tests/examples/; 1 rank = 2 ranks is core_parallel_fbar.
 
 #include <scarp/transfer/f_bar.h>
 
@@ -129,25 +129,33 @@ namespace
   }
 
   /// A free elastic block (nu = 0.45) with a non-uniform initial velocity,
-  /// run for ~10 steps without points leaving their cells.
+  /// run for ~10 steps without points leaving their cells; @p refined: the
+  /// left half of the mesh one level finer (cells of two sizes, hanging
+  /// nodes along x = 0.5 in the block).
   std::string
   block_scene(const unsigned int dim,
               const std::string &shapes,
               const std::string &scheme,
-              const std::string &averaging)
+              const std::string &averaging,
+              const bool         refined)
   {
     const std::vector<double> lower(dim, 0.), upper(dim, 1.);
     std::vector<double>       corners(dim, 0.25);
     corners.resize(2 * dim, 0.75);
+    std::vector<double> region(dim, 0.);
+    region.resize(2 * dim, 1.);
+    region[dim] = 0.5;
     const std::string velocity =
       dim == 2 ? "0.01 * x * y; -0.01 * x * x"
                : "0.01 * x * y; -0.01 * x * x; 0.01 * y * z";
+    std::string mesh =
+      mesh_text(lower, upper, 0.125, std::vector<std::string>(2 * dim, "free"));
+    if (refined)
+      mesh += "subsection Mesh\n  subsection Refinement\n    set Initial "
+              "levels = 1\n    set Initial region = " +
+              scarp_test::list(region) + "\n  end\nend\n";
     return scene_header(dim) + material_text("linear elastic", 1e6, 0.45, 1e3) +
-           mesh_text(lower,
-                     upper,
-                     0.125,
-                     std::vector<std::string>(2 * dim, "free")) +
-           body_text("body", box_shape(corners), 2, velocity) +
+           mesh + body_text("body", box_shape(corners), 2, velocity) +
            run_text(std::vector<double>(dim, 0.),
                     0.5,
                     0.01,
@@ -159,52 +167,60 @@ namespace
                       "\n  set Volumetric averaging = " + averaging + "\n");
   }
 
-  /// Largest relative spread of J among the points that started in one
-  /// cell (none leaves its cell in this run).
+  /// Largest relative spread of J among the points of one active cell at
+  /// the end; no point moves by more than 1e-2 of a cell (points start a
+  /// quarter cell from its faces), so each stayed in its cell.
   template <int dim>
   double
-  spread_of_J_in_cells(const std::string &text)
+  spread_of_J_in_cells(const std::string &text, const bool refined)
   {
     auto sim = make_scene<dim>(text, MPI_COMM_WORLD);
+    check(sim->background_grid().triangulation().n_global_levels() ==
+            (refined ? 2u : 1u),
+          refined ? "cells of two sizes" : "cells of one size");
     sim->run_until(0.01);
-    const auto &layout = sim->property_layout();
-    std::map<std::vector<long>, std::pair<double, double>> range;
-    unsigned int                                           n_changed = 0;
-    for (const auto &particle : sim->particle_handler())
-      {
-        const double     *p = particle.get_properties().data();
-        std::vector<long> cell(dim), now(dim);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            cell[d] =
-              std::lround(std::floor(p[layout.reference_position + d] / 0.125));
-            now[d] =
-              std::lround(std::floor(particle.get_location()[d] / 0.125));
-          }
-        n_changed += cell != now;
-        const double J =
-          determinant(layout.get_matrix(p, layout.deformation_gradient));
-        auto r           = range.emplace(cell, std::make_pair(J, J)).first;
-        r->second.first  = std::min(r->second.first, J);
-        r->second.second = std::max(r->second.second, J);
-      }
-    check(Utilities::MPI::sum(n_changed, MPI_COMM_WORLD) == 0,
-          "no point left its cell");
-    double spread = 0;
-    for (const auto &[cell, r] : range)
-      spread = std::max(spread, (r.second - r.first) / r.first);
+    const auto &layout    = sim->property_layout();
+    const auto &particles = sim->particle_handler();
+    double      spread = 0, moved = 0, h_min = 1e30;
+    for (const auto &cell :
+         sim->background_grid().dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          h_min = std::min(h_min, cell->diameter() / std::sqrt(double(dim)));
+          double J_min = 1e30, J_max = -1e30;
+          for (const auto &particle : particles.particles_in_cell(cell))
+            {
+              const double *p = particle.get_properties().data();
+              const double  J =
+                determinant(layout.get_matrix(p, layout.deformation_gradient));
+              J_min = std::min(J_min, J);
+              J_max = std::max(J_max, J);
+              Point<dim> X;
+              for (unsigned int d = 0; d < dim; ++d)
+                X[d] = p[layout.reference_position + d];
+              moved = std::max(moved, particle.get_location().distance(X));
+            }
+          if (J_max >= J_min)
+            spread = std::max(spread, (J_max - J_min) / J_min);
+        }
+    h_min = Utilities::MPI::min(h_min, MPI_COMM_WORLD);
+    check(Utilities::MPI::max(moved, MPI_COMM_WORLD) < 1e-2 * h_min,
+          "no point moved by 1e-2 of the smallest cell");
     return Utilities::MPI::max(spread, MPI_COMM_WORLD);
   }
 
   template <int dim>
   void
-  cells(const std::string &shapes, const std::string &scheme)
+  cells(const std::string &shapes,
+        const std::string &scheme,
+        const bool         refined = false)
   {
-    const double with =
-      spread_of_J_in_cells<dim>(block_scene(dim, shapes, scheme, "F-bar"));
-    const double without =
-      spread_of_J_in_cells<dim>(block_scene(dim, shapes, scheme, "none"));
+    const double with = spread_of_J_in_cells<dim>(
+      block_scene(dim, shapes, scheme, "F-bar", refined), refined);
+    const double without = spread_of_J_in_cells<dim>(
+      block_scene(dim, shapes, scheme, "none", refined), refined);
     out() << "  " << dim << "D " << shapes << "/" << scheme
+          << (refined ? ", refined" : "")
           << ": spread of J within a cell, F-bar " << with << ", none "
           << without << std::endl;
     // With F-bar each step gives the points of a cell one dJbar (to a few
@@ -223,5 +239,7 @@ main(int argc, char **argv)
                    {{"increment", increment},
                     {"cells_q1_musl", [] { cells<2>("Q1", "MUSL"); }},
                     {"cells_gimp_musl", [] { cells<2>("GIMP", "MUSL"); }},
-                    {"cells_q1_usl_3d", [] { cells<3>("Q1", "USL"); }}});
+                    {"cells_q1_usl_3d", [] { cells<3>("Q1", "USL"); }},
+                    {"cells_gimp_refined",
+                     [] { cells<2>("GIMP", "MUSL", true); }}});
 }

@@ -10,7 +10,9 @@ v t. Prints Prandtl's q_u = c N_c, the largest q, the limit load q_lim (the
 mean q over settlements from --window S0 S1 times B, by default 0.4 % to
 0.9 %: the plateau of the example), the last q, q_lim / q_u, and the
 median spread of the pressure within a cell under the footing and far from
-it (locking), as `name = value` lines. --plot-pressure draws the mean pressure
+it, and the median difference between a cell's mean pressure and its
+neighbours' under the footing (locking, checkerboard), as `name = value`
+lines. --plot-pressure draws the mean pressure
 p = -(s_xx + s_yy + s_zz)/3 at the points of the last output (a
 checkerboard of p from cell to cell would be volumetric locking).
 --compare adds the load curve of another run (e.g. without F-bar) to
@@ -85,10 +87,23 @@ for (i, j), ps in cells.items():
         p_under.append(sum(ps) / len(ps))
     elif (i + 0.5) * args.cell_size > 4 * args.half_width:
         far.append(max(ps) - min(ps))
-under.sort(); far.sort(); p_under.sort()
+# One pressure per cell can still alternate from cell to cell (the
+# checkerboard of constant-pressure cells): the cell mean minus the mean of
+# its four neighbours' means, under the footing. A smooth field gives a
+# fraction of the pressure's change over a cell.
+mean = {k: sum(ps) / len(ps) for k, ps in cells.items() if len(ps) >= 3}
+jump = []
+for (i, j), pm in mean.items():
+    nb = [mean.get(k) for k in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1))]
+    if None in nb:
+        continue
+    if (i + 0.5) * args.cell_size < 1.2 * args.half_width and top - (j + 0.5) * args.cell_size < 1.2 * B:
+        jump.append(abs(pm - sum(nb) / 4))
+under.sort(); far.sort(); p_under.sort(); jump.sort()
 print("pressure_spread_in_cell_under_footing_median = %.6g" % under[len(under) // 2])
 print("pressure_under_footing_median = %.6g" % p_under[len(p_under) // 2])
 print("pressure_spread_in_cell_far_median = %.6g" % far[len(far) // 2])
+print("pressure_cell_to_neighbours_under_footing_median = %.6g" % jump[len(jump) // 2])
 
 if args.plot_load or args.plot_pressure:
     import matplotlib
