@@ -56,10 +56,12 @@ namespace scarp
         "replaced by the mean over the points of its cell (weighted by their "
         "volumes at the start of the step), the isochoric part of dF is kept, "
         "dFbar = (dJbar/dJ)^(1/dim) dF; the stress, F and the point volume "
-        "follow dFbar, the grid forces and the internal work the unmodified "
-        "velocity gradient. The cell is the active cell that holds the point "
-        "(any level of a refined mesh; with Q1 or GIMP); a cell's points are "
-        "on the rank that owns it, so runs on any number of ranks agree. "
+        "follow dFbar, and the grid forces use the cell's volume-weighted "
+        "mean normal stress in place of each point's (they then do the work "
+        "sigma : Dbar that the stresses take). The cell is the active cell "
+        "that holds the point (any level of a refined mesh; with Q1 or "
+        "GIMP); a cell's points are on the rank that owns it, so runs on any "
+        "number of ranks agree. "
         "doc/examples.md (Prandtl's footing), doc/stability.md.");
       prm.leave_subsection();
     }
