@@ -260,12 +260,13 @@ namespace scarp
                 with_body ? local_mass + (1 + 2 * dim + d) * n : nullptr;
             }
           // F-bar: the stress deforms with the cell's mean volume change,
-          // so its mean in-plane normal stress acts through the cell's
-          // volume-weighted mean of the gradients: each point's is replaced
-          // by the cell's. The grid forces then do the work the stresses
-          // take (sigma : Dbar); with each point's own, dilatant plastic
-          // flow (pressures that differ within a cell) fed energy into the
-          // motion without bound (doc/examples.md, section 3).
+          // so its mean normal stress (of the dim in-plane components)
+          // acts through the cell's volume-weighted mean of the gradients:
+          // each point's is replaced by the cell's. The grid forces then do
+          // the work the stresses take (sigma : Dbar); with each point's
+          // own, dilatant plastic flow (pressures that differ within a
+          // cell) fed energy into the motion without bound
+          // (doc/examples.md, section 3).
           double mean_normal_stress = 0;
           if (f_bar && !momentum_only)
             {
