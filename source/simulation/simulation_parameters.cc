@@ -368,6 +368,7 @@ namespace scarp
                  transfer::VelocityTransfer::apic;
       nonlocal::NonlocalParameters nonlocal_parameters;
       nonlocal_parameters.parse_parameters(prm);
+      nonlocal_update_interval = nonlocal_parameters.update_interval;
 
       stages.clear();
       double previous_end = 0;

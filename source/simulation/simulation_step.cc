@@ -57,6 +57,26 @@ namespace scarp
       if (!averager || !(stage.damage || gather_precursors))
         return;
       TimerOutput::Scope scope(timer, "non-local damage");
+      // Between two averages (Update interval > 1) every point's damage is
+      // driven by its last Ybar. The average is always taken at the first
+      // step of a stage (the Ybar kept from before is not this stage's) and
+      // for the refinement criterion. The rule depends on the step only, so
+      // a restarted run repeats it.
+      if (stage.damage && !gather_precursors && nonlocal_update_interval > 1 &&
+          step > stage_start_step + 1 && step % nonlocal_update_interval != 0)
+        {
+          for (std::size_t k = 0; k < damage_points.position.size(); ++k)
+            if (damage_points.receiver[k])
+              {
+                double     *p = damage_points.properties[k];
+                const auto &m =
+                  *materials[static_cast<unsigned int>(p[layout.material_id])];
+                m.update_damage(m.last_nonlocal_driver(p + layout.state),
+                                dt,
+                                p + layout.state);
+              }
+          return;
+        }
       // Without damage (gravity loading) no point is a receiver; for the
       // refinement criterion every point that is not fully damaged is.
       if (!stage.damage)

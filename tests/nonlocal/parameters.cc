@@ -1,4 +1,5 @@
-// NonlocalParameters: declared with a default, parsed from a scene file;
+// NonlocalParameters: declared with defaults, parsed from a scene file, bad
+// values (negative skin, update interval < 1 or not an integer) rejected;
 // the weight names round-trip and a bad name is rejected with a message.
 
 #include <deal.II/base/mpi.h>
@@ -39,6 +40,28 @@ main(int argc, char **argv)
         rejected = true;
       }
     check(rejected, "negative skin fraction rejected");
+
+    check(parameters.update_interval == 1, "default update interval 1");
+    prm.parse_input_from_string("subsection Non-local average\n"
+                                "  set Update interval = 4\n"
+                                "end\n");
+    parameters.parse_parameters(prm);
+    check(parameters.update_interval == 4, "parsed update interval");
+    for (const std::string bad : {"0", "-2", "1.5"})
+      {
+        rejected = false;
+        try
+          {
+            prm.parse_input_from_string("subsection Non-local average\n"
+                                        "  set Update interval = " +
+                                        bad + "\nend\n");
+          }
+        catch (const std::exception &)
+          {
+            rejected = true;
+          }
+        check(rejected, "update interval " + bad + " rejected");
+      }
   }
 
   for (const auto type :

@@ -190,6 +190,12 @@ namespace scarp
                  state[damage_variable] >= 1.);
       }
 
+      double
+      last_nonlocal_driver(const double *state) const override
+      {
+        return state[nonlocal_driver];
+      }
+
       /// Inverse of damage_from_kappa() for d in [0, 1): the kappa >= sigma_f
       /// with d(kappa) = d (sigma_f for d = 0).
       double

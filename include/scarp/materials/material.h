@@ -155,6 +155,15 @@ namespace scarp
       {
       }
 
+      /// The non-local driver Ybar that update_damage() last received (0
+      /// for models that do not keep it). Steps between two non-local
+      /// averages (Non-local average/Update interval) reuse it.
+      virtual double
+      last_nonlocal_driver(const double * /*state*/) const
+      {
+        return 0.;
+      }
+
       /// Update the history (kappa) and damage of a point from the
       /// non-local driver @p nonlocal_driver over the step @p dt. Damage is
       /// used in the stress from the next update() on.

@@ -305,6 +305,8 @@ namespace scarp
       std::vector<double>                               nonlocal_driver;
       bool                                              any_damage = false;
       std::vector<BoundingBox<dim>>                     local_boxes;
+      /// Non-local average/Update interval: steps between two averages.
+      unsigned int nonlocal_update_interval = 1;
       /// Refinement: ids of points whose non-local driver is near their
       /// damage threshold (sorted), gathered in the non-local step before a
       /// refinement pass.
