@@ -51,13 +51,13 @@ namespace scarp
         setup();
       Stage stage = stages.front();
       for (const auto &s : stages)
-        if (current_time < s.end_time)
+        if (loop.time < s.end_time)
           {
             stage = s;
             break;
           }
       stage.end_time = t;
-      while (current_time < t * (1 - 1e-12))
+      while (loop.time < t * (1 - 1e-12))
         advance(stage);
     }
 
@@ -123,60 +123,58 @@ namespace scarp
         {
           vtu->restore_records(restored_records);
           pcout << "Resumed from " << checkpoint.loaded_directory()
-                << " at step " << step << ", t = " << current_time << " s"
+                << " at step " << loop.step << ", t = " << loop.time << " s"
                 << std::endl;
         }
       else
         {
           write_statistics(last_report, stages.front());
           write_output();
-          next_output   = output_interval;
-          current_stage = 0;
+          loop.next_output = output_interval;
+          loop.stage.index = 0;
         }
       checkpoint.start();
 
-      for (; current_stage < stages.size(); ++current_stage)
+      for (; loop.stage.index < stages.size(); ++loop.stage.index)
         {
-          const Stage &stage = stages[current_stage];
-          if (!stage_in_progress)
+          const Stage &stage = stages[loop.stage.index];
+          if (!loop.stage.in_progress)
             {
-              stage_start_time      = current_time;
-              stage_start_step      = step;
-              stage_peak_kinetic    = 0;
-              settled_since         = -1;
-              stage_in_progress     = true;
-              mass_scaling_ended    = false;
-              mass_scaling_end_time = -1;
+              loop.stage.start_time      = loop.time;
+              loop.stage.start_step      = loop.step;
+              loop.stage.peak_kinetic    = 0;
+              loop.stage.settled_since   = -1;
+              loop.stage.in_progress     = true;
+              loop.mass_scaling.ended    = false;
+              loop.mass_scaling.end_time = -1;
             }
-          const double       start_time = stage_start_time;
-          const unsigned int start_step = stage_start_step;
-          const double       start_wall = wall_clock.wall_time();
-          std::string        reason     = "end time";
+          const double start_wall = wall_clock.wall_time();
+          std::string  reason     = "end time";
           pcout << "Stage " << stage.name << " (to t = " << stage.end_time
                 << " s)" << std::endl;
-          if (cliff && stage.damage && damage_stage_start < 0)
+          if (cliff && stage.damage && loop.failure.damage_stage_start < 0)
             {
-              damage_stage_start = current_time;
+              loop.failure.damage_stage_start = loop.time;
               cliff_snapshot("start");
             }
-          while (current_time < stage.end_time * (1 - 1e-12))
+          while (loop.time < stage.end_time * (1 - 1e-12))
             {
               advance(stage);
-              if (step % statistics_interval == 0)
+              if (loop.step % statistics_interval == 0)
                 write_statistics(last_report, stage);
               if (output_interval > 0 &&
-                  current_time >= next_output * (1 - 1e-12))
+                  loop.time >= loop.next_output * (1 - 1e-12))
                 {
                   write_output();
-                  while (next_output <= current_time * (1 + 1e-12))
-                    next_output += output_interval;
+                  while (loop.next_output <= loop.time * (1 + 1e-12))
+                    loop.next_output += output_interval;
                 }
               print_progress(last_report, stage, false);
-              if (failure_time >= 0 && after_failure_delay >= 0 &&
-                  !after_failure_taken &&
-                  current_time >= failure_time + after_failure_delay)
+              if (loop.failure.onset_time >= 0 && after_failure_delay >= 0 &&
+                  !loop.failure.after_failure_taken &&
+                  loop.time >= loop.failure.onset_time + after_failure_delay)
                 {
-                  after_failure_taken = true;
+                  loop.failure.after_failure_taken = true;
                   cliff_snapshot("after_failure");
                   if (stop_after_failure)
                     {
@@ -186,17 +184,19 @@ namespace scarp
                 }
               if (stage.settle)
                 {
-                  stage_peak_kinetic =
-                    std::max(stage_peak_kinetic, last_report.kinetic_energy);
-                  const bool quiet = step - start_step > 20 &&
-                                     last_report.kinetic_energy <=
-                                       stage.kinetic_ratio * stage_peak_kinetic;
+                  loop.stage.peak_kinetic =
+                    std::max(loop.stage.peak_kinetic,
+                             last_report.kinetic_energy);
+                  const bool quiet =
+                    loop.step - loop.stage.start_step > 20 &&
+                    last_report.kinetic_energy <=
+                      stage.kinetic_ratio * loop.stage.peak_kinetic;
                   if (!quiet)
-                    settled_since = -1;
-                  else if (settled_since < 0)
-                    settled_since = current_time;
+                    loop.stage.settled_since = -1;
+                  else if (loop.stage.settled_since < 0)
+                    loop.stage.settled_since = loop.time;
                   if (quiet &&
-                      current_time - settled_since >= stage.settle_time)
+                      loop.time - loop.stage.settled_since >= stage.settle_time)
                     {
                       reason = "kinetic energy settled";
                       break;
@@ -214,30 +214,32 @@ namespace scarp
           print_progress(last_report, stage, true);
           postprocess::JsonObject s;
           s.add("end_reason", reason);
-          s.add("start_time", start_time);
-          s.add("end_time", current_time);
-          s.add("steps", double(step - start_step));
+          s.add("start_time", loop.stage.start_time);
+          s.add("end_time", loop.time);
+          s.add("steps", double(loop.step - loop.stage.start_step));
           s.add("wall_time", wall_clock.wall_time() - start_wall);
           s.add("kinetic_energy", last_report.kinetic_energy);
           if (stage.mass_scaling > 1)
             {
               s.add("mass_scaling", stage.mass_scaling);
-              s.add("mass_scaling_end_time", mass_scaling_end_time);
+              s.add("mass_scaling_end_time", loop.mass_scaling.end_time);
             }
           stage_summaries.add(stage.name, s);
           pcout << "Stage " << stage.name << " ended (" << reason
-                << ") at t = " << current_time << " s after "
-                << step - start_step << " steps" << std::endl;
-          stage_in_progress = false;
-          if (after_failure_taken && stop_after_failure)
+                << ") at t = " << loop.time << " s after "
+                << loop.step - loop.stage.start_step << " steps" << std::endl;
+          loop.stage.in_progress = false;
+          if (loop.failure.after_failure_taken && stop_after_failure)
             break;
-          if (checkpoint.at_stage_ends() && current_stage + 1 < stages.size())
+          if (checkpoint.at_stage_ends() &&
+              loop.stage.index + 1 < stages.size())
             write_checkpoint();
         }
-      if (cliff && after_failure_taken && stop_after_failure)
+      if (cliff && loop.failure.after_failure_taken && stop_after_failure)
         {
           // The debris is still moving: only the onset means something.
-          const double onset = failure_time - damage_stage_start;
+          const double onset =
+            loop.failure.onset_time - loop.failure.damage_stage_start;
           cliff_summary.add("failure_onset_s", onset);
           cliff_summary.add("max_damage", last_report.max_damage);
           pcout << "Cliff: failure onset " << onset
@@ -254,8 +256,8 @@ namespace scarp
         }
       timer.print_wall_time_statistics(communicator);
       pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
-            << step << " steps, "
-            << last_report.n_points * step /
+            << loop.step << " steps, "
+            << last_report.n_points * loop.step /
                  std::max(wall_clock.wall_time(), 1e-9)
             << " particle-steps/s. Output in " << output_directory << "/"
             << std::endl;

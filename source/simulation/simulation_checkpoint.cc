@@ -24,22 +24,10 @@ namespace scarp
     void
     Simulation<dim>::serialize_loop_state(Archive &ar)
     {
-      // Everything the time loop carries from one step to the next; the
-      // particles and the mesh travel in the triangulation's files.
-      ar &current_time &dt &step &output_index &next_output;
-      ar &initial_energy &internal_work &damping_dissipation
-        &boundary_dissipation &transfer_dissipation &body_force_work
-          &scale_of_energy &last_residual &n_removed;
-      ar &current_stage &stage_in_progress &stage_start_time &stage_start_step
-        &stage_peak_kinetic &settled_since;
-      ar &inertia_scale &mass_scaling_ended &mass_scaling_end_time
-        &mass_scaling_loss;
-      ar &first_damage_time &failure_time &after_failure_taken
-                                                            &damage_stage_start;
-      ar &stage_summaries                                   &cliff_summary;
-      ar &n_refinement_passes &n_refinement_checks &n_split &n_rebalances;
-      ar &reference_error_max &reference_norm_max &reference_error_last;
-      ar                                          &checkpoint;
+      // The loop state, the records of the stages (and of the cliff) so
+      // far and the checkpoint's own clock; the particles and the mesh
+      // travel in the triangulation's files.
+      ar &loop &stage_summaries &cliff_summary &checkpoint;
       // A plain struct of numbers.
       boost::serialization::binary_object report(&last_report,
                                                  sizeof(last_report));
@@ -71,8 +59,8 @@ namespace scarp
             ">: its loop state cannot be read (" + e.what() + ").");
         }
       // A checkpoint at the end of a stage resumes with the next one.
-      if (!stage_in_progress)
-        ++current_stage;
+      if (!loop.stage.in_progress)
+        ++loop.stage.index;
       particles.update_cached_numbers();
       // deal.II 9.4's load() partitions by cells when the number of ranks
       // changed: partition by the points again.
@@ -115,9 +103,9 @@ namespace scarp
                        particles,
                        out.str(),
                        {output_directory + "/statistics.csv"},
-                       step,
-                       current_time);
-      pcout << "  checkpoint at step " << step << " (t = " << current_time
+                       loop.step,
+                       loop.time);
+      pcout << "  checkpoint at step " << loop.step << " (t = " << loop.time
             << " s) in " << checkpoint.directory() << std::endl;
     }
 
@@ -126,7 +114,7 @@ namespace scarp
     void
     Simulation<dim>::checkpoint_if_due()
     {
-      const auto due = checkpoint.poll(current_time, step);
+      const auto due = checkpoint.poll(loop.time, loop.step);
       if (due == Checkpoint<dim>::Due::nothing)
         return;
       write_checkpoint();
@@ -134,9 +122,10 @@ namespace scarp
         return;
       std::ostringstream message;
       message << "interrupted by " << checkpoint.signal_name() << " at step "
-              << step << " (t = " << current_time << " s); a checkpoint is in "
-              << checkpoint.directory() << ": resume with scarp --resume "
-              << checkpoint.directory() << " SCENE.prm";
+              << loop.step << " (t = " << loop.time
+              << " s); a checkpoint is in " << checkpoint.directory()
+              << ": resume with scarp --resume " << checkpoint.directory()
+              << " SCENE.prm";
       write_summary("interrupted: " + message.str());
       throw ScarpError(message.str());
     }

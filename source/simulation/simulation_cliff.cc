@@ -87,7 +87,9 @@ namespace scarp
       postprocess::CliffDiagnostics::write_profile_csv(
         output_directory + "/cliff_profile.csv", profile, &r);
       const double onset =
-        failure_time >= 0 ? failure_time - damage_stage_start : -1;
+        loop.failure.onset_time >= 0
+          ? loop.failure.onset_time - loop.failure.damage_stage_start
+          : -1;
       cliff_summary.add("debris_angle_deg", r.debris_angle);
       cliff_summary.add("run_out_m", r.run_out);
       cliff_summary.add("debris_toe_x_m", r.debris_toe);

@@ -41,7 +41,7 @@ namespace scarp
     {
       if (!reference_displacement)
         return -1;
-      reference_displacement->set_time(current_time);
+      reference_displacement->set_time(loop.time);
       double sums[3] = {0, 0, 0};
       for (const auto &particle : particles)
         {
@@ -76,14 +76,14 @@ namespace scarp
       if (!outputs_enabled)
         return;
       TimerOutput::Scope scope(timer, "output");
-      vtu->write_particles(particles, layout, current_time, output_index);
+      vtu->write_particles(particles, layout, loop.time, loop.output_index);
       if (write_mesh_files)
         vtu->write_mesh(grid,
                         mpm->nodal_mass(),
                         mpm->nodal_velocity(),
-                        current_time,
-                        output_index);
-      ++output_index;
+                        loop.time,
+                        loop.output_index);
+      ++loop.output_index;
     }
 
 
@@ -95,22 +95,23 @@ namespace scarp
       (void)stage;
       if (!statistics)
         return;
-      const double material_dissipation = internal_work - r.stored_energy;
-      std::vector<double> row({double(step),
-                               current_time,
-                               dt,
-                               double(current_stage),
+      const double material_dissipation =
+        loop.energy.internal_work - r.stored_energy;
+      std::vector<double> row({double(loop.step),
+                               loop.time,
+                               loop.dt,
+                               double(loop.stage.index),
                                r.kinetic_energy,
                                r.stored_energy,
                                r.gravitational_energy,
-                               internal_work,
-                               damping_dissipation,
-                               boundary_dissipation,
-                               transfer_dissipation,
+                               loop.energy.internal_work,
+                               loop.energy.damping_dissipation,
+                               loop.energy.boundary_dissipation,
+                               loop.energy.transfer_dissipation,
                                r.plastic_dissipation,
                                r.damage_dissipation,
                                material_dissipation,
-                               last_residual,
+                               loop.energy.residual,
                                r.momentum[0],
                                r.momentum[1],
                                r.momentum[2],
@@ -124,14 +125,15 @@ namespace scarp
                                r.damaged_volume,
                                wall_clock.wall_time()});
       if (body_force)
-        row.push_back(body_force_work);
+        row.push_back(loop.energy.body_force_work);
       if (reference_displacement)
         {
-          double       norm    = 0;
-          const double e       = reference_error(&norm);
-          reference_error_last = e;
-          reference_error_max  = std::max(reference_error_max, e);
-          reference_norm_max   = std::max(reference_norm_max, norm);
+          double       norm         = 0;
+          const double e            = reference_error(&norm);
+          loop.reference_error.last = e;
+          loop.reference_error.max  = std::max(loop.reference_error.max, e);
+          loop.reference_error.norm_max =
+            std::max(loop.reference_error.norm_max, norm);
           row.push_back(e);
         }
       if (grid.boundary_conditions().has_prescribed_velocity())
@@ -154,16 +156,15 @@ namespace scarp
       if (!force && wall - last_progress_wall < 2.)
         return;
       last_progress_wall = wall;
-      const double done  = current_time / stages.back().end_time;
+      const double done  = loop.time / stages.back().end_time;
       const double eta   = done > 0 ? wall * (1 - done) / done : 0;
       pcout << "  " << std::setw(8) << stage.name << "  step " << std::setw(7)
-            << step << "  t = " << std::setw(10) << std::setprecision(5)
-            << current_time << " s  dt = " << std::setw(9)
-            << std::setprecision(3) << dt << " s  E_kin = " << std::setw(10)
-            << r.kinetic_energy << " J  max d = " << std::setw(5)
-            << std::setprecision(3) << r.max_damage << "  wall "
-            << format_seconds(wall) << "  ETA <= " << format_seconds(eta)
-            << std::endl;
+            << loop.step << "  t = " << std::setw(10) << std::setprecision(5)
+            << loop.time << " s  dt = " << std::setw(9) << std::setprecision(3)
+            << loop.dt << " s  E_kin = " << std::setw(10) << r.kinetic_energy
+            << " J  max d = " << std::setw(5) << std::setprecision(3)
+            << r.max_damage << "  wall " << format_seconds(wall)
+            << "  ETA <= " << format_seconds(eta) << std::endl;
     }
 
 
@@ -179,40 +180,41 @@ namespace scarp
       summary.add("dimension", double(dim));
       summary.add("mpi_ranks",
                   double(Utilities::MPI::n_mpi_processes(communicator)));
-      summary.add("steps", double(step));
-      summary.add("load_rebalances", double(n_rebalances));
+      summary.add("steps", double(loop.step));
+      summary.add("load_rebalances", double(loop.counters.rebalances));
       if (grid.adaptive_refinement)
         {
           postprocess::JsonObject refinement;
-          refinement.add("checks", double(n_refinement_checks));
-          refinement.add("passes", double(n_refinement_passes));
-          refinement.add("points_split", double(n_split));
+          refinement.add("checks", double(loop.counters.refinement_checks));
+          refinement.add("passes", double(loop.counters.refinement_passes));
+          refinement.add("points_split", double(loop.counters.points_split));
           refinement.add("finest_cell", grid.minimum_cell_size());
           summary.add("refinement", refinement);
         }
-      summary.add("time", current_time);
+      summary.add("time", loop.time);
       summary.add("material_points", last_report.n_points);
       summary.add("cells",
                   double(grid.triangulation().n_global_active_cells()));
       summary.add("wall_time", wall_clock.wall_time());
-      const double point_steps = last_report.n_points * step;
+      const double point_steps = last_report.n_points * loop.step;
       summary.add("particle_steps_per_second",
                   point_steps / std::max(wall_clock.wall_time(), 1e-9));
       postprocess::JsonObject energies;
       energies.add("kinetic", last_report.kinetic_energy);
       energies.add("strain", last_report.stored_energy);
       energies.add("gravitational", last_report.gravitational_energy);
-      energies.add("internal_work", internal_work);
-      energies.add("damping_dissipation", damping_dissipation);
-      if (mass_scaling_loss != 0)
-        energies.add("mass_scaling_dissipation", mass_scaling_loss);
-      energies.add("boundary_dissipation", boundary_dissipation);
-      energies.add("transfer_dissipation", transfer_dissipation);
+      energies.add("internal_work", loop.energy.internal_work);
+      energies.add("damping_dissipation", loop.energy.damping_dissipation);
+      if (loop.energy.mass_scaling_dissipation != 0)
+        energies.add("mass_scaling_dissipation",
+                     loop.energy.mass_scaling_dissipation);
+      energies.add("boundary_dissipation", loop.energy.boundary_dissipation);
+      energies.add("transfer_dissipation", loop.energy.transfer_dissipation);
       if (body_force)
-        energies.add("body_force_work", body_force_work);
+        energies.add("body_force_work", loop.energy.body_force_work);
       energies.add("plastic_dissipation", last_report.plastic_dissipation);
       energies.add("damage_dissipation", last_report.damage_dissipation);
-      energies.add("balance_residual", last_residual);
+      energies.add("balance_residual", loop.energy.residual);
       summary.add("energies", energies);
       postprocess::JsonObject phases;
       for (const auto &[name, seconds] :
@@ -225,18 +227,18 @@ namespace scarp
       const bool ended_inside_stage =
         how_it_ended != "completed" && how_it_ended != "stopped after failure";
       postprocess::JsonObject stages_so_far = stage_summaries;
-      if (ended_inside_stage && stage_in_progress &&
-          current_stage < stages.size())
+      if (ended_inside_stage && loop.stage.in_progress &&
+          loop.stage.index < stages.size())
         {
-          const Stage            &stage = stages[current_stage];
+          const Stage            &stage = stages[loop.stage.index];
           postprocess::JsonObject s;
           s.add("end_reason", "in progress");
-          s.add("start_time", stage_start_time);
-          s.add("end_time", current_time);
+          s.add("start_time", loop.stage.start_time);
+          s.add("end_time", loop.time);
           if (stage.mass_scaling > 1)
             {
               s.add("mass_scaling", stage.mass_scaling);
-              s.add("mass_scaling_end_time", mass_scaling_end_time);
+              s.add("mass_scaling_end_time", loop.mass_scaling.end_time);
             }
           stages_so_far.add(stage.name, s);
         }
@@ -244,13 +246,14 @@ namespace scarp
       if (cliff)
         {
           postprocess::JsonObject c = cliff_summary;
-          if (ended_inside_stage && failure_time >= 0)
-            c.add("failure_onset_s", failure_time - damage_stage_start);
+          if (ended_inside_stage && loop.failure.onset_time >= 0)
+            c.add("failure_onset_s",
+                  loop.failure.onset_time - loop.failure.damage_stage_start);
           summary.add("cliff", c);
         }
       summary.add("max_damage", last_report.max_damage);
-      summary.add("first_damage_time", first_damage_time);
-      summary.add("points_removed", n_removed);
+      summary.add("first_damage_time", loop.failure.first_damage_time);
+      summary.add("points_removed", loop.counters.points_removed);
       if (averager)
         {
           // How often the non-local lists were rebuilt, reused as they
@@ -264,11 +267,12 @@ namespace scarp
       if (reference_displacement)
         {
           postprocess::JsonObject ref;
-          ref.add("final", reference_error_last);
-          ref.add("max", reference_error_max);
-          ref.add("norm_max", reference_norm_max);
+          ref.add("final", loop.reference_error.last);
+          ref.add("max", loop.reference_error.max);
+          ref.add("norm_max", loop.reference_error.norm_max);
           ref.add("relative_max",
-                  reference_error_max / std::max(reference_norm_max, 1e-300));
+                  loop.reference_error.max /
+                    std::max(loop.reference_error.norm_max, 1e-300));
           summary.add("reference_error", ref);
         }
       summary.write(output_directory + "/summary.json");

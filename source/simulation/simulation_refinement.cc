@@ -29,7 +29,8 @@ namespace scarp
     bool
     Simulation<dim>::refinement_due() const
     {
-      return grid.adaptive_refinement && step % grid.refinement_interval == 0;
+      return grid.adaptive_refinement &&
+             loop.step % grid.refinement_interval == 0;
     }
 
 
@@ -48,7 +49,7 @@ namespace scarp
     {
       TimerOutput::Scope scope(timer, "refinement");
       auto              &tria = grid.triangulation();
-      ++n_refinement_checks;
+      ++loop.counters.refinement_checks;
       // Seeds: cells with a damaged point, or with a point whose non-local
       // driver approaches its damage threshold (gathered in the non-local
       // step). Both are properties of the points, so the seeds do not
@@ -82,7 +83,7 @@ namespace scarp
       std::vector<unsigned int> per_direction;
       for (const auto &body : bodies)
         per_direction.push_back(body.per_direction);
-      n_split += particles::PointSplitter<dim>::split(
+      loop.counters.points_split += particles::PointSplitter<dim>::split(
         particles, layout, per_direction, grid.domain(), communicator);
       particles.sort_particles_into_subdomains_and_cells();
       // Splitting changed the points per cell: repartition by them.
@@ -94,7 +95,7 @@ namespace scarp
       local_boxes.clear();
       if (averager)
         averager->invalidate_neighbour_lists();
-      ++n_refinement_passes;
+      ++loop.counters.refinement_passes;
     }
 
 

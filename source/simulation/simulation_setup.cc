@@ -55,9 +55,9 @@ namespace scarp
       if (checkpoint.resuming())
         return; // the loop state came with the checkpoint
       last_report = measure();
-      initial_energy =
+      loop.energy.initial =
         last_report.kinetic_energy + last_report.gravitational_energy;
-      scale_of_energy = last_report.kinetic_energy;
+      loop.energy.scale = last_report.kinetic_energy;
     }
 
 
@@ -81,7 +81,7 @@ namespace scarp
       local_boxes.clear();
       if (averager)
         averager->invalidate_neighbour_lists();
-      ++n_rebalances;
+      ++loop.counters.rebalances;
     }
 
 

@@ -45,7 +45,8 @@ namespace scarp
       // Mass scaling slows the waves by the square root of its factor.
       return std::min(max_time_step,
                       cfl * grid.minimum_cell_size() /
-                        (c / std::sqrt(inertia_scale) + last_report.max_speed));
+                        (c / std::sqrt(loop.mass_scaling.inertia_scale) +
+                         last_report.max_speed));
     }
 
 
@@ -53,7 +54,7 @@ namespace scarp
     void
     Simulation<dim>::nonlocal_damage_step(const Stage &stage)
     {
-      const bool gather_precursors = precursors_due(step);
+      const bool gather_precursors = precursors_due(loop.step);
       if (!averager || !(stage.damage || gather_precursors))
         return;
       TimerOutput::Scope scope(timer, "non-local damage");
@@ -63,7 +64,8 @@ namespace scarp
       // for the refinement criterion. The rule depends on the step only, so
       // a restarted run repeats it.
       if (stage.damage && !gather_precursors && nonlocal_update_interval > 1 &&
-          step > stage_start_step + 1 && step % nonlocal_update_interval != 0)
+          loop.step > loop.stage.start_step + 1 &&
+          loop.step % nonlocal_update_interval != 0)
         {
           for (std::size_t k = 0; k < damage_points.position.size(); ++k)
             if (damage_points.receiver[k])
@@ -72,7 +74,7 @@ namespace scarp
                 const auto &m =
                   *materials[static_cast<unsigned int>(p[layout.material_id])];
                 m.update_damage(m.last_nonlocal_driver(p + layout.state),
-                                dt,
+                                loop.dt,
                                 p + layout.state);
               }
           return;
@@ -145,7 +147,7 @@ namespace scarp
                                        m.damage_threshold(p + layout.state))
               precursor_ids.push_back(damage_points.id[k]);
             if (stage.damage)
-              m.update_damage(nonlocal_driver[k], dt, p + layout.state);
+              m.update_damage(nonlocal_driver[k], loop.dt, p + layout.state);
           }
       if (gather_precursors)
         std::sort(precursor_ids.begin(), precursor_ids.end());
@@ -185,26 +187,28 @@ namespace scarp
           // The transfers' loss and the boundary's are exact discrete
           // bookings; what remains is the time (and MUSL stress-velocity)
           // error of the internal and gravitational work (doc/user_guide.md).
-          const double kinetic = inertia_scale * report.kinetic_energy;
-          const double balance = kinetic + report.gravitational_energy +
-                                 internal_work + damping_dissipation +
-                                 boundary_dissipation + mass_scaling_loss +
-                                 transfer_dissipation - body_force_work;
-          last_residual   = balance - initial_energy;
-          scale_of_energy = std::max(
-            {scale_of_energy,
-             kinetic,
-             std::abs(report.gravitational_energy -
-                      (initial_energy - last_report.kinetic_energy * 0)),
-             std::abs(internal_work),
-             std::abs(body_force_work),
-             report.stored_energy});
-          if (last_residual > growth_tolerance * scale_of_energy &&
-              scale_of_energy > 0)
+          const double kinetic =
+            loop.mass_scaling.inertia_scale * report.kinetic_energy;
+          const double balance =
+            kinetic + report.gravitational_energy + loop.energy.internal_work +
+            loop.energy.damping_dissipation + loop.energy.boundary_dissipation +
+            loop.energy.mass_scaling_dissipation +
+            loop.energy.transfer_dissipation - loop.energy.body_force_work;
+          loop.energy.residual = balance - loop.energy.initial;
+          loop.energy.scale    = std::max(
+            {loop.energy.scale,
+                kinetic,
+                std::abs(report.gravitational_energy -
+                      (loop.energy.initial - last_report.kinetic_energy * 0)),
+                std::abs(loop.energy.internal_work),
+                std::abs(loop.energy.body_force_work),
+                report.stored_energy});
+          if (loop.energy.residual > growth_tolerance * loop.energy.scale &&
+              loop.energy.scale > 0)
             {
               std::ostringstream s;
-              s << "The energy grew by " << last_residual << " J ("
-                << 100 * last_residual / scale_of_energy
+              s << "The energy grew by " << loop.energy.residual << " J ("
+                << 100 * loop.energy.residual / loop.energy.scale
                 << " % of the largest energy of the run, tolerance "
                 << 100 * growth_tolerance << " %).";
               failure = s.str();
@@ -216,8 +220,8 @@ namespace scarp
       if (failure.empty())
         return;
       std::ostringstream message;
-      message << "Stage " << stage.name << ", step " << step
-              << " (t = " << current_time << " s, dt = " << dt
+      message << "Stage " << stage.name << ", step " << loop.step
+              << " (t = " << loop.time << " s, dt = " << loop.dt
               << " s): " << failure << " Likely cause: " << cause;
       write_summary("error: " + message.str());
       throw ScarpError(message.str());
@@ -243,17 +247,17 @@ namespace scarp
     void
     Simulation<dim>::advance(const Stage &stage)
     {
-      const double scale = (stage.mass_scaling > 1 && !mass_scaling_ended)
+      const double scale = (stage.mass_scaling > 1 && !loop.mass_scaling.ended)
                              ? stage.mass_scaling
                              : 1;
-      if (scale > inertia_scale)
+      if (scale > loop.mass_scaling.inertia_scale)
         {
           // Mass scaling begins: the kinetic energy is kept (velocities
           // times sqrt(old / new)). Keeping the velocities would multiply
           // the energy of the vibrations left from the previous stage by
           // m_s, and real time would get it back as m_s times stronger
           // vibrations when the scaling ends.
-          const double f = std::sqrt(inertia_scale / scale);
+          const double f = std::sqrt(loop.mass_scaling.inertia_scale / scale);
           for (auto &particle : particles)
             {
               double *p = particle.get_properties().data();
@@ -265,26 +269,27 @@ namespace scarp
             }
           last_report.kinetic_energy *= f * f;
           last_report.max_speed *= f;
-          inertia_scale = scale;
+          loop.mass_scaling.inertia_scale = scale;
         }
-      else if (scale < inertia_scale)
+      else if (scale < loop.mass_scaling.inertia_scale)
         {
           // Mass scaling ends: the velocities (the failure's motion) are
           // kept, and the kinetic energy of the inertia that goes is booked
           // so that the balance stays closed.
-          mass_scaling_loss +=
-            (inertia_scale - scale) * last_report.kinetic_energy;
-          inertia_scale = scale;
+          loop.energy.mass_scaling_dissipation +=
+            (loop.mass_scaling.inertia_scale - scale) *
+            last_report.kinetic_energy;
+          loop.mass_scaling.inertia_scale = scale;
         }
-      mpm->set_mass_scale(inertia_scale);
-      dt = stable_time_step();
-      if (current_time + dt > stage.end_time)
-        dt = std::max(stage.end_time - current_time, 1e-300);
+      mpm->set_mass_scale(loop.mass_scaling.inertia_scale);
+      loop.dt = stable_time_step();
+      if (loop.time + loop.dt > stage.end_time)
+        loop.dt = std::max(stage.end_time - loop.time, 1e-300);
       for (auto &m : materials)
         m->set_inelastic_enabled(stage.plasticity, stage.damage);
 
       if (body_force)
-        body_force->set_time(current_time);
+        body_force->set_time(loop.time);
       transfer::StepReport report;
       {
         TimerOutput::Scope scope(timer, "MPM step");
@@ -294,36 +299,37 @@ namespace scarp
         // the driver approaches the threshold while the loading is still
         // damped (their transients die out before the collapse starts).
         const bool gather =
-          any_damage && (stage.damage || precursors_due(step + 1));
-        report = mpm->step(dt,
+          any_damage && (stage.damage || precursors_due(loop.step + 1));
+        report = mpm->step(loop.dt,
                            gravity,
                            stage.damping,
                            gather ? &damage_points : nullptr);
         report.reduce(communicator);
       }
-      internal_work += report.internal_work;
-      damping_dissipation += report.damping_dissipation;
-      boundary_dissipation += report.boundary_dissipation;
-      transfer_dissipation += report.transfer_dissipation;
-      body_force_work += report.body_force_work;
-      current_time += dt;
-      ++step;
+      loop.energy.internal_work += report.internal_work;
+      loop.energy.damping_dissipation += report.damping_dissipation;
+      loop.energy.boundary_dissipation += report.boundary_dissipation;
+      loop.energy.transfer_dissipation += report.transfer_dissipation;
+      loop.energy.body_force_work += report.body_force_work;
+      loop.time += loop.dt;
+      ++loop.step;
       check(report, stage);
       // The volume test runs only when a point is fast (report.max_speed is
       // reduced, so every rank takes the same branch).
-      if (inertia_scale > 1 && stage.mass_scaling_end_speed > 0 &&
+      if (loop.mass_scaling.inertia_scale > 1 &&
+          stage.mass_scaling_end_speed > 0 &&
           report.max_speed > stage.mass_scaling_end_speed &&
           (stage.mass_scaling_end_volume == 0 ||
            fast_volume(stage.mass_scaling_end_speed) >
              stage.mass_scaling_end_volume))
         {
           // Real time from the next step on.
-          mass_scaling_ended    = true;
-          mass_scaling_end_time = current_time;
+          loop.mass_scaling.ended    = true;
+          loop.mass_scaling.end_time = loop.time;
           pcout << "Stage " << stage.name << ": points move faster than "
                 << stage.mass_scaling_end_speed << " m/s (largest speed "
                 << report.max_speed
-                << " m/s): mass scaling ends at t = " << current_time << " s"
+                << " m/s): mass scaling ends at t = " << loop.time << " s"
                 << std::endl;
         }
       nonlocal_damage_step(stage);
@@ -335,34 +341,34 @@ namespace scarp
           mpm->update_reference_locations();
       }
       if (report.n_outside > 0)
-        n_removed += report.n_outside;
-      if (first_damage_time < 0 && report.max_damage > 0.5 && stage.damage &&
-          any_damage)
-        first_damage_time = current_time;
+        loop.counters.points_removed += report.n_outside;
+      if (loop.failure.first_damage_time < 0 && report.max_damage > 0.5 &&
+          stage.damage && any_damage)
+        loop.failure.first_damage_time = loop.time;
       last_report = report;
-      if (cliff && stage.damage && failure_time < 0 &&
+      if (cliff && stage.damage && loop.failure.onset_time < 0 &&
           report.max_speed > failure_speed &&
           (failure_volume == 0 || fast_volume(failure_speed) > failure_volume))
         {
-          failure_time = current_time;
+          loop.failure.onset_time = loop.time;
           cliff_snapshot("failure");
-          pcout << "Cliff: failure onset at t = " << current_time << " s, "
-                << current_time - damage_stage_start
-                << " s after the start of damage (step " << step << ")"
+          pcout << "Cliff: failure onset at t = " << loop.time << " s, "
+                << loop.time - loop.failure.damage_stage_start
+                << " s after the start of damage (step " << loop.step << ")"
                 << std::endl;
         }
       if (refinement_due())
         refine_mesh();
-      else if (balance_interval > 0 && step % balance_interval == 0)
+      else if (balance_interval > 0 && loop.step % balance_interval == 0)
         rebalance_if_needed();
-      if (step >= max_steps)
+      if (loop.step >= max_steps)
         {
           write_summary("error: maximum number of steps reached");
           throw ScarpError("Stage " + stage.name +
                            ": the run reached <Maximum "
                            "steps> = " +
                            std::to_string(max_steps) +
-                           " at t = " + std::to_string(current_time) + " s.");
+                           " at t = " + std::to_string(loop.time) + " s.");
         }
     }
 

@@ -20,6 +20,7 @@
 #include <scarp/scenes/cliff_profile.h>
 #include <scarp/scenes/shape.h>
 #include <scarp/simulation/checkpoint.h>
+#include <scarp/simulation/loop_state.h>
 #include <scarp/simulation/scene_lists.h>
 #include <scarp/simulation/stage.h>
 #include <scarp/transfer/mpm_transfer.h>
@@ -106,11 +107,11 @@ namespace scarp
         particles.sort_particles_into_subdomains_and_cells();
         particles.update_cached_numbers();
         last_report = measure();
-        if (step == 0)
+        if (loop.step == 0)
           {
-            initial_energy =
+            loop.energy.initial =
               last_report.kinetic_energy + last_report.gravitational_energy;
-            scale_of_energy = last_report.kinetic_energy;
+            loop.energy.scale = last_report.kinetic_energy;
           }
       }
       /// The time step the next step will take (before clipping to the end
@@ -130,17 +131,17 @@ namespace scarp
       double
       time() const
       {
-        return current_time;
+        return loop.time;
       }
       unsigned int
       step_number() const
       {
-        return step;
+        return loop.step;
       }
       double
       time_step() const
       {
-        return dt;
+        return loop.dt;
       }
       /// Whether this scene runs the non-local damage average at all (only
       /// scenes with a damage material do).
@@ -166,38 +167,38 @@ namespace scarp
       double
       energy_residual() const
       {
-        return last_residual;
+        return loop.energy.residual;
       }
       /// The terms of the balance that are sums over the steps.
       double
       transfer_dissipation_total() const
       {
-        return transfer_dissipation;
+        return loop.energy.transfer_dissipation;
       }
       double
       body_force_work_total() const
       {
-        return body_force_work;
+        return loop.energy.body_force_work;
       }
       double
       internal_work_total() const
       {
-        return internal_work;
+        return loop.energy.internal_work;
       }
       double
       boundary_dissipation_total() const
       {
-        return boundary_dissipation;
+        return loop.energy.boundary_dissipation;
       }
       double
       damping_dissipation_total() const
       {
-        return damping_dissipation;
+        return loop.energy.damping_dissipation;
       }
       double
       energy_scale() const
       {
-        return scale_of_energy;
+        return loop.energy.scale;
       }
 
     private:
@@ -311,59 +312,33 @@ namespace scarp
       /// damage threshold (sorted), gathered in the non-local step before a
       /// refinement pass.
       std::vector<types::particle_index> precursor_ids;
-      unsigned int                       n_refinement_passes = 0;
-      unsigned int                       n_refinement_checks = 0;
-      types::particle_index              n_split             = 0;
       boost::signals2::connection        weight_connection;
 
       Tensor<1, dim>                                  gravity;
       std::unique_ptr<Functions::ParsedFunction<dim>> body_force;
       std::unique_ptr<Functions::ParsedFunction<dim>> reference_displacement;
-      double reference_error_max = 0, reference_norm_max = 0,
-             reference_error_last      = -1;
-      double       cfl                 = 0.5;
-      double       max_time_step       = 1e30;
-      std::string  output_directory    = "output";
-      double       output_interval     = 0;
-      unsigned int statistics_interval = 10;
-      bool         write_mesh_files    = true;
-      double       growth_tolerance    = 0.1;
+      double                                          cfl           = 0.5;
+      double                                          max_time_step = 1e30;
+      std::string  output_directory                                 = "output";
+      double       output_interval                                  = 0;
+      unsigned int statistics_interval                              = 10;
+      bool         write_mesh_files                                 = true;
+      double       growth_tolerance                                 = 0.1;
       /// Load balancing during the run (see rebalance_if_needed()).
       unsigned int balance_interval  = 200;
       double       balance_tolerance = 0.1;
-      unsigned int n_rebalances      = 0;
       bool         remove_outside    = false;
       unsigned int max_steps         = 100000000;
 
-      // State of the time loop.
-      double       current_time         = 0;
-      double       dt                   = 0;
-      unsigned int step                 = 0;
-      unsigned int output_index         = 0;
-      double       next_output          = 0;
-      bool         outputs_enabled      = true;
-      double       initial_energy       = 0;
-      double       internal_work        = 0;
-      double       damping_dissipation  = 0;
-      double       boundary_dissipation = 0;
-      double       scale_of_energy      = 0;
-      double       last_residual        = 0;
-      double       n_removed            = 0;
-      unsigned int current_stage        = 0;
-      double       stage_peak_kinetic   = 0;
-      double       settled_since        = -1;
-      double       last_progress_wall   = -1e9;
-      double       first_damage_time    = -1;
-      /// Kinetic energy the transfers removed and the work of the body
-      /// force (StepReport), summed over the steps.
-      double transfer_dissipation = 0, body_force_work = 0;
-      /// Mass scaling of the current step (Stage::mass_scaling while it
-      /// lasts, else 1), whether it has ended in this stage, when, and the
-      /// kinetic energy booked as dissipated at the switches.
-      double                                       inertia_scale      = 1;
-      bool                                         mass_scaling_ended = false;
-      double                                       mass_scaling_end_time = -1;
-      double                                       mass_scaling_loss     = 0;
+      /// The state of the time loop (time, step, stage, energies, mass
+      /// scaling, failure, counters): what a checkpoint saves of it.
+      LoopState loop;
+      /// Off in run_until() (tests): no files, no summary.
+      bool outputs_enabled = true;
+      /// Wall time of the last progress line (not saved: wall clock).
+      double last_progress_wall = -1e9;
+      /// The report of the last step (energies, largest speed for the next
+      /// dt); saved with the loop state.
       transfer::StepReport                         last_report;
       std::unique_ptr<postprocess::StatisticsFile> statistics;
       std::unique_ptr<postprocess::VtuOutput<dim>> vtu;
@@ -373,20 +348,12 @@ namespace scarp
       const scenes::CliffProfile                  *cliff          = nullptr;
       double                                       failure_speed  = 0.1;
       double                                       failure_volume = 0;
-      double                                       failure_time   = -1;
       /// Snapshot "after_failure" this long after the onset [s] (< 0: none);
       /// compares failure surfaces across resolutions at one stage of motion.
       double after_failure_delay = 1.;
-      bool   after_failure_taken = false;
       /// End the run once the after-failure snapshot is taken.
-      bool   stop_after_failure = false;
-      double damage_stage_start = -1;
+      bool stop_after_failure = false;
 
-      // Checkpoints; the stage loop's own state, saved with the rest.
-      /// The stage current_stage has begun (it has a start time and step).
-      bool            stage_in_progress = false;
-      double          stage_start_time  = 0;
-      unsigned int    stage_start_step  = 0;
       Checkpoint<dim> checkpoint;
       /// The PVD records read from a checkpoint, for the VtuOutput.
       std::pair<std::vector<std::pair<double, std::string>>,
