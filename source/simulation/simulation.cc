@@ -212,19 +212,9 @@ namespace scarp
           write_statistics(last_report, stage);
           write_output();
           print_progress(last_report, stage, true);
-          postprocess::JsonObject s;
-          s.add("end_reason", reason);
-          s.add("start_time", loop.stage.start_time);
-          s.add("end_time", loop.time);
-          s.add("steps", double(loop.step - loop.stage.start_step));
-          s.add("wall_time", wall_clock.wall_time() - start_wall);
-          s.add("kinetic_energy", last_report.kinetic_energy);
-          if (stage.mass_scaling > 1)
-            {
-              s.add("mass_scaling", stage.mass_scaling);
-              s.add("mass_scaling_end_time", loop.mass_scaling.end_time);
-            }
-          stage_summaries.add(stage.name, s);
+          stage_summaries.add(
+            stage.name,
+            stage_record(stage, reason, wall_clock.wall_time() - start_wall));
           pcout << "Stage " << stage.name << " ended (" << reason
                 << ") at t = " << loop.time << " s after "
                 << loop.step - loop.stage.start_step << " steps" << std::endl;

@@ -230,17 +230,9 @@ namespace scarp
       if (ended_inside_stage && loop.stage.in_progress &&
           loop.stage.index < stages.size())
         {
-          const Stage            &stage = stages[loop.stage.index];
-          postprocess::JsonObject s;
-          s.add("end_reason", "in progress");
-          s.add("start_time", loop.stage.start_time);
-          s.add("end_time", loop.time);
-          if (stage.mass_scaling > 1)
-            {
-              s.add("mass_scaling", stage.mass_scaling);
-              s.add("mass_scaling_end_time", loop.mass_scaling.end_time);
-            }
-          stages_so_far.add(stage.name, s);
+          const Stage &stage = stages[loop.stage.index];
+          stages_so_far.add(stage.name,
+                            stage_record(stage, "in progress", std::nullopt));
         }
       summary.add("stages", stages_so_far);
       if (cliff)
@@ -279,6 +271,31 @@ namespace scarp
     }
 
 
+    template <int dim>
+    postprocess::JsonObject
+    Simulation<dim>::stage_record(const Stage                 &stage,
+                                  const std::string           &end_reason,
+                                  const std::optional<double> &wall_time) const
+    {
+      postprocess::JsonObject s;
+      s.add("end_reason", end_reason);
+      s.add("start_time", loop.stage.start_time);
+      s.add("end_time", loop.time);
+      if (wall_time)
+        {
+          s.add("steps", double(loop.step - loop.stage.start_step));
+          s.add("wall_time", *wall_time);
+          s.add("kinetic_energy", last_report.kinetic_energy);
+        }
+      if (stage.mass_scaling > 1)
+        {
+          s.add("mass_scaling", stage.mass_scaling);
+          s.add("mass_scaling_end_time", loop.mass_scaling.end_time);
+        }
+      return s;
+    }
+
+
     // Instantiations (the other members are in the other
     // simulation_*.cc files).
     template double
@@ -307,5 +324,13 @@ namespace scarp
     Simulation<2>::write_summary(const std::string &how_it_ended);
     template void
     Simulation<3>::write_summary(const std::string &how_it_ended);
+    template postprocess::JsonObject
+    Simulation<2>::stage_record(const Stage                 &stage,
+                                const std::string           &end_reason,
+                                const std::optional<double> &wall_time) const;
+    template postprocess::JsonObject
+    Simulation<3>::stage_record(const Stage                 &stage,
+                                const std::string           &end_reason,
+                                const std::optional<double> &wall_time) const;
   } // namespace simulation
 } // namespace scarp

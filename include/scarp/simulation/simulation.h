@@ -26,6 +26,7 @@
 #include <scarp/transfer/mpm_transfer.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -247,6 +248,15 @@ namespace scarp
       write_output();
       void
       write_summary(const std::string &how_it_ended);
+      /// The record of the current stage in summary.json: how it ended,
+      /// its start and end, the end of its mass scaling. A stage that has
+      /// ended (@p wall_time given: its wall time) also has its steps, wall
+      /// time and final kinetic energy; one "in progress" (a run that
+      /// stopped inside it) has not.
+      postprocess::JsonObject
+      stage_record(const Stage                 &stage,
+                   const std::string           &end_reason,
+                   const std::optional<double> &wall_time) const;
       void
       print_progress(const transfer::StepReport &report,
                      const Stage                &stage,
