@@ -219,7 +219,7 @@ namespace scarp
     bool
     Chalk::damage_can_change(const double *state) const
     {
-      return damage_enabled && state[damage_variable] < 1.;
+      return state[damage_variable] < 1.;
     }
 
 
@@ -326,8 +326,9 @@ namespace scarp
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
           const std::array<double, 3> tau_trial = tau;
           std::array<double, 3>       dep       = {{0., 0., 0.}};
-          if (plasticity_enabled && mohr_coulomb.return_stress(tau) !=
-                                      MohrCoulombReturn::Region::elastic)
+          if (batch.inelastic.plasticity &&
+              mohr_coulomb.return_stress(tau) !=
+                MohrCoulombReturn::Region::elastic)
             {
               const std::array<double, 3> eps =
                 elasticity.principal_strain(tau);
@@ -388,7 +389,7 @@ namespace scarp
     {
       const double d_n              = state[damage_variable];
       state[Chalk::nonlocal_driver] = nonlocal_driver;
-      if (!damage_enabled || d_n >= 1.)
+      if (d_n >= 1.)
         return;
       // Exact integration of kappa_dot = <Ybar - kappa>/tau over the step
       // with Ybar constant: unconditionally stable, rate bounded by 1/tau.

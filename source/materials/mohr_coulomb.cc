@@ -52,8 +52,9 @@ namespace scarp
           SpectralDecomposition e =
             hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
-          if (plasticity_enabled && mohr_coulomb.return_stress(tau) !=
-                                      MohrCoulombReturn::Region::elastic)
+          if (batch.inelastic.plasticity &&
+              mohr_coulomb.return_stress(tau) !=
+                MohrCoulombReturn::Region::elastic)
             {
               // Principal plastic strain increment: trial minus corrected
               // elastic strain (same principal directions).

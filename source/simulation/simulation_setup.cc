@@ -225,8 +225,6 @@ namespace scarp
         any = any || body.displacement;
       if (!any)
         return;
-      for (auto &m : materials)
-        m->set_inelastic_enabled(false, false);
       for (auto &particle : particles)
         {
           double     *p = particle.get_properties().data();
@@ -259,6 +257,9 @@ namespace scarp
           batch.state         = &state;
           batch.stress        = &sigma;
           batch.stored_energy = &stored;
+          // Elastic: the displacement is the state, not a load path.
+          batch.inelastic.plasticity = false;
+          batch.inelastic.damage     = false;
           if (materials[body.material]->has_damage())
             batch.damage_driver = &driver;
           materials[body.material]->update(batch);

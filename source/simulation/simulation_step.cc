@@ -285,8 +285,6 @@ namespace scarp
       loop.dt = stable_time_step();
       if (loop.time + loop.dt > stage.end_time)
         loop.dt = std::max(stage.end_time - loop.time, 1e-300);
-      for (auto &m : materials)
-        m->set_inelastic_enabled(stage.plasticity, stage.damage);
 
       if (body_force)
         body_force->set_time(loop.time);
@@ -303,6 +301,7 @@ namespace scarp
         report = mpm->step(loop.dt,
                            gravity,
                            stage.damping,
+                           stage.inelastic_switches(),
                            gather ? &damage_points : nullptr);
         report.reduce(communicator);
       }

@@ -579,13 +579,14 @@ namespace scarp
     template <int dim>
     void
     MpmTransfer<dim>::grid_to_particles(
-      const double                   dt,
-      const bool                     update_positions_and_velocities,
-      const bool                     update_stress,
-      const std::array<Vector, dim> &stress_velocity,
-      StepReport                    &report,
-      DamagePoints<dim>             *damage_points,
-      const Tensor<1, dim>          &gravity)
+      const double                        dt,
+      const bool                          update_positions_and_velocities,
+      const bool                          update_stress,
+      const materials::InelasticSwitches &inelastic,
+      const std::array<Vector, dim>      &stress_velocity,
+      StepReport                         &report,
+      DamagePoints<dim>                  *damage_points,
+      const Tensor<1, dim>               &gravity)
     {
       auto                   &pool   = particle_handler.get_property_pool();
       unsigned int            k      = 0; // point counter
@@ -839,6 +840,7 @@ namespace scarp
               batch.state         = b.state.data();
               batch.stress        = b.stress.data();
               batch.stored_energy = b.stored_energy.data();
+              batch.inelastic     = inelastic;
               if (material.has_damage())
                 {
                   b.driver.resize(b.F.size());
@@ -892,7 +894,7 @@ namespace scarp
                       damage_points->volume.push_back(V0 * J);
                       damage_points->driver.push_back(b.driver[k]);
                       damage_points->receiver.push_back(
-                        material.damage_can_change(state));
+                        inelastic.damage && material.damage_can_change(state));
                       damage_points->id.push_back(b.id[k]);
                       damage_points->properties.push_back(p);
                     }
@@ -1022,10 +1024,11 @@ namespace scarp
 
     template <int dim>
     StepReport
-    MpmTransfer<dim>::step(const double          dt,
-                           const Tensor<1, dim> &gravity,
-                           const Damping        &damping,
-                           DamagePoints<dim>    *damage_points)
+    MpmTransfer<dim>::step(const double                        dt,
+                           const Tensor<1, dim>               &gravity,
+                           const Damping                      &damping,
+                           const materials::InelasticSwitches &inelastic,
+                           DamagePoints<dim>                  *damage_points)
     {
       StepReport report;
       last_gravity            = gravity;
@@ -1037,15 +1040,27 @@ namespace scarp
       particles_to_grid(gravity, false);
       solve_grid(dt, damping, report);
       if (parameters.scheme == UpdateScheme::usl)
-        grid_to_particles(
-          dt, true, true, velocity_new, report, damage_points, gravity);
+        grid_to_particles(dt,
+                          true,
+                          true,
+                          inelastic,
+                          velocity_new,
+                          report,
+                          damage_points,
+                          gravity);
       else
         {
           grid_to_particles(
-            dt, true, false, velocity_new, report, nullptr, gravity);
+            dt, true, false, inelastic, velocity_new, report, nullptr, gravity);
           remap_momentum(report);
-          grid_to_particles(
-            dt, false, true, velocity_remapped, report, damage_points, gravity);
+          grid_to_particles(dt,
+                            false,
+                            true,
+                            inelastic,
+                            velocity_remapped,
+                            report,
+                            damage_points,
+                            gravity);
         }
       return report;
     }

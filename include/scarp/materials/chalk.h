@@ -136,6 +136,10 @@ namespace scarp
       initialize_state(const SymmetricTensor<2, 3> &initial_stress,
                        double                      *state) const override;
 
+      /// Without batch.inelastic.plasticity no return mapping (gravity
+      /// loading). The damage d does not change here whatever the switches
+      /// (only update_damage() changes it); it degrades the stress, and Y is
+      /// computed and written for output.
       void
       update(const MaterialBatch &batch) const override;
 
@@ -155,7 +159,7 @@ namespace scarp
       double
       nonlocal_length() const override;
 
-      /// False once d = 1, and while damage is switched off.
+      /// False once d = 1.
       bool
       damage_can_change(const double *state) const override;
 
@@ -203,8 +207,7 @@ namespace scarp
 
       /// kappa += (1 - exp(-dt/tau)) <Ybar - kappa>, d = max(d_n,
       /// d(kappa)), d > 1 - 1e-6 -> 1; accumulates the released energy.
-      /// Ybar is kept in the state (nonlocal_driver) for output; the rest
-      /// is a no-op while damage is switched off.
+      /// Ybar is kept in the state (nonlocal_driver) for output.
       void
       update_damage(const double nonlocal_driver,
                     const double dt,
@@ -217,16 +220,6 @@ namespace scarp
       {
         plastic = state[plastic_dissipation];
         damage  = state[damage_dissipation];
-      }
-
-      /// Gravity-loading stage: without plasticity no return mapping; without
-      /// damage, d and kappa stay frozen (the existing d still degrades the
-      /// stress, and Y is still computed and written for output).
-      void
-      set_inelastic_enabled(const bool plasticity, const bool damage) override
-      {
-        plasticity_enabled = plasticity;
-        damage_enabled     = damage;
       }
 
       NonlocalWeight
@@ -274,8 +267,6 @@ namespace scarp
       /// 3 / (3 + tan theta) and tan theta / 3 of the driver.
       const double driver_scale;
       const double driver_friction;
-      bool         plasticity_enabled = true;
-      bool         damage_enabled     = true;
     };
   } // namespace materials
 } // namespace scarp

@@ -16,6 +16,19 @@ namespace scarp
     using namespace dealii;
 
     /**
+     * @brief Which inelastic parts of the constitutive models act in a
+     * step (staging: gravity loading runs elastic). Models without them
+     * ignore these.
+     */
+    struct InelasticSwitches
+    {
+      /// The plastic return mapping.
+      bool plasticity = true;
+      /// Growth of damage (the existing damage still degrades the stress).
+      bool damage = true;
+    };
+
+    /**
      * @brief The points of one cell that share a material, handed to a
      * constitutive model in one call (no virtual call per point).
      *
@@ -42,6 +55,8 @@ namespace scarp
       /// Out: local damage driver Y per point [Pa]; only for materials with
       /// has_damage(), nullptr otherwise.
       double *damage_driver = nullptr;
+      /// The inelastic parts that act in this update (the stage's).
+      InelasticSwitches inelastic;
     };
 
     /**
@@ -108,7 +123,8 @@ namespace scarp
       }
 
       /// Whether a point with this state can still change its damage (so
-      /// that it takes part in the non-local average as a receiver).
+      /// that it takes part in the non-local average as a receiver), in a
+      /// step where damage grows at all (InelasticSwitches::damage).
       virtual bool
       damage_can_change(const double * /*state*/) const
       {
@@ -166,7 +182,8 @@ namespace scarp
 
       /// Update the history (kappa) and damage of a point from the
       /// non-local driver @p nonlocal_driver over the step @p dt. Damage is
-      /// used in the stress from the next update() on.
+      /// used in the stress from the next update() on. Called only in steps
+      /// where damage grows (InelasticSwitches::damage).
       virtual void
       update_damage(const double /*nonlocal_driver*/,
                     const double /*dt*/,
@@ -183,13 +200,6 @@ namespace scarp
       {
         plastic = 0.;
         damage  = 0.;
-      }
-
-      /// Switch the inelastic parts on or off (staging: gravity loading runs
-      /// elastic). Models without them ignore this.
-      virtual void
-      set_inelastic_enabled(const bool /*plasticity*/, const bool /*damage*/)
-      {
       }
     };
   } // namespace materials

@@ -61,6 +61,8 @@ namespace scarp
       initialize_state(const SymmetricTensor<2, 3> &initial_stress,
                        double                      *state) const override;
 
+      /// Without batch.inelastic.plasticity pure Hencky elasticity (gravity
+      /// loading stage).
       void
       update(const MaterialBatch &batch) const override;
 
@@ -79,13 +81,6 @@ namespace scarp
         damage  = 0.;
       }
 
-      /// Plasticity off: pure Hencky elasticity (gravity loading stage).
-      void
-      set_inelastic_enabled(const bool plasticity, const bool) override
-      {
-        plasticity_enabled = plasticity;
-      }
-
       const MohrCoulombReturn &
       get_return_mapping() const
       {
@@ -102,7 +97,6 @@ namespace scarp
       const double              rho;
       const IsotropicElasticity elasticity;
       const MohrCoulombReturn   mohr_coulomb;
-      bool                      plasticity_enabled = true;
     };
   } // namespace materials
 } // namespace scarp

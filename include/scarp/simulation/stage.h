@@ -37,6 +37,16 @@ namespace scarp
       /// ... and the points faster than that hold more than this volume.
       double mass_scaling_end_volume = 0.;
 
+      /// The stage's switches as the materials get them in their batches.
+      materials::InelasticSwitches
+      inelastic_switches() const
+      {
+        materials::InelasticSwitches switches;
+        switches.plasticity = plasticity;
+        switches.damage     = damage;
+        return switches;
+      }
+
       static void
       declare_parameters(ParameterHandler &prm);
       void

@@ -114,15 +114,18 @@ namespace scarp
 
       /**
        * One explicit step of length @p dt. Returns this rank's report (not
-       * yet reduced). If @p damage_points is given, points of damage
-       * materials are gathered into it in the order of the particle
-       * iteration, for the non-local step.
+       * yet reduced). The materials' updates get the switches @p inelastic
+       * (the stage's) in their batches. If @p damage_points is given, points
+       * of damage materials are gathered into it in the order of the
+       * particle iteration, for the non-local step; they are receivers only
+       * if damage grows in this step.
        */
       StepReport
-      step(const double          dt,
-           const Tensor<1, dim> &gravity,
-           const Damping        &damping,
-           DamagePoints<dim>    *damage_points);
+      step(const double                        dt,
+           const Tensor<1, dim>               &gravity,
+           const Damping                      &damping,
+           const materials::InelasticSwitches &inelastic,
+           DamagePoints<dim>                  *damage_points);
 
       /// The GIMP patches (for tests and statistics).
       GimpPatches<dim> &
@@ -162,10 +165,11 @@ namespace scarp
       grid_to_particles(const double dt,
                         const bool   update_positions_and_velocities,
                         const bool   update_stress,
-                        const std::array<Vector, dim> &stress_velocity,
-                        StepReport                    &report,
-                        DamagePoints<dim>             *damage_points,
-                        const Tensor<1, dim>          &gravity);
+                        const materials::InelasticSwitches &inelastic,
+                        const std::array<Vector, dim>      &stress_velocity,
+                        StepReport                         &report,
+                        DamagePoints<dim>                  *damage_points,
+                        const Tensor<1, dim>               &gravity);
       /// Weights and gradients of the point at reference location @p xi
       /// (Q1), or at @p x with reference volume @p V0 (GIMP).
       void
