@@ -15,47 +15,6 @@ namespace
   constexpr int dim = 2;
   using Sim         = simulation::Simulation<dim>;
 
-  /// An L-shaped chalk overhang on a floor: a wall [0, 0.5] x [0, 2] with a
-  /// cantilever [0.5, 1.5] x [1.5, 2]; left face slip (the cliff goes on),
-  /// floor with friction. Cantilever root: sigma ~ 6 M / t^2 = 3 rho g
-  /// a^2 / t = 100 kPa (a = 1 m, t = 0.5 m), five times sigma_f, so the root
-  /// damages and the cantilever breaks off and falls 1.5 m.
-  std::string
-  overhang_scene(const ChalkText   &chalk,
-                 const double       h,
-                 const std::string &stages,
-                 const std::string &regions    = "",
-                 const double       mesh_width = 3)
-  {
-    return "set Dimension = 2\nset Materials = chalk\nset Bodies = cliff\n"
-           "set Stages = " +
-           stages + "\nset Pre-damaged regions = " + regions +
-           "\nset Output directory = output_overhang\n" +
-           mesh_text({0, 0},
-                     {mesh_width, 2.5},
-                     h,
-                     {"slip", "free", "friction", "free"}) +
-           chalk.text("chalk") +
-           "subsection Body cliff\n  set Material = chalk\n"
-           "  set Particles per cell = 2\n  set Shape = polygon\n"
-           "  set Vertices = 0, 0; 0.5, 0; 0.5, 1.5; 1.5, 1.5; 1.5, 2; 0, 2\n"
-           "end\n"
-           "subsection Physics\n  set Gravity = 0, -9.81\nend\n"
-           "subsection Time\n  set CFL number = 0.5\nend\n";
-  }
-
-  /// The Joss Bay chalk with a short delay (tau = 0.01 s instead of 1 s)
-  /// and a lower cohesion (100 kPa, so that plasticity also acts).
-  ChalkText
-  overhang_chalk()
-  {
-    ChalkText chalk;
-    chalk.characteristic_time = 0.01;
-    chalk.cohesion            = 1e5;
-    chalk.friction_angle      = 30;
-    return chalk;
-  }
-
   /// Columns of statistics.csv by name.
   std::map<std::string, std::vector<double>>
   read_statistics(const std::string &filename)

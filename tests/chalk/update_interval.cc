@@ -2,9 +2,10 @@
 // the average is taken every k steps of a damage stage and at its first
 // step; the steps between drive each point's damage with its last Ybar.
 //
-// A chalk overhang (a wall with a 1 m cantilever, tau = 0.01 s, as in
-// chalk_energy_balance) damages at the root of the cantilever within
-// 0.03 s. It runs with the interval 1 (every step, the exact answer) and 4:
+// The chalk overhang of chalk_energy_balance (overhang_scene() in
+// chalk_tools.h: a wall with a 1 m cantilever, tau = 0.01 s) damages at the
+// root of the cantilever within 0.03 s. It runs with the interval 1 (every
+// step, the exact answer) and 4:
 // * the number of averages is exactly 1 + floor(N/4) for N steps (the
 //   first step and every fourth), counted by the averager (list builds +
 //   reuses in summary.json), against N with the interval 1;
@@ -47,24 +48,10 @@ namespace
   Run
   run_overhang(const unsigned int interval, const double t_end)
   {
-    ChalkText chalk;
-    chalk.characteristic_time = 0.01;
-    chalk.cohesion            = 1e5;
-    chalk.friction_angle      = 30;
     const std::string directory =
       "output_update_interval_" + std::to_string(interval);
     const std::string text =
-      "set Dimension = 2\nset Materials = chalk\nset Bodies = cliff\n"
-      "set Stages = collapse\nset Output directory = " +
-      directory + "\n" +
-      mesh_text({0, 0}, {3, 2.5}, 0.125, {"slip", "free", "friction", "free"}) +
-      chalk.text("chalk") +
-      "subsection Body cliff\n  set Material = chalk\n"
-      "  set Particles per cell = 2\n  set Shape = polygon\n"
-      "  set Vertices = 0, 0; 0.5, 0; 0.5, 1.5; 1.5, 1.5; 1.5, 2; 0, 2\n"
-      "end\n"
-      "subsection Physics\n  set Gravity = 0, -9.81\nend\n"
-      "subsection Time\n  set CFL number = 0.5\nend\n"
+      overhang_scene(overhang_chalk(), 0.125, "collapse", "", 3, directory) +
       "subsection Output\n  set Interval = 0\n  set Write mesh = false\nend\n"
       "subsection Non-local average\n  set Update interval = " +
       std::to_string(interval) + "\nend\n" + stage_text("collapse", t_end);
