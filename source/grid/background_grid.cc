@@ -100,6 +100,18 @@ namespace scarp
                         "20",
                         Patterns::Integer(1),
                         "Steps between refinement passes.");
+      prm.declare_entry(
+        "Set-up passes",
+        "0",
+        Patterns::Integer(0, 6),
+        "Before the run, the first stage (a loading stage without damage) "
+        "runs up to this many times without output: after a pass that "
+        "refined the mesh, the points are discarded and the bodies seeded "
+        "anew on the refined mesh, so that refined cells hold points seeded "
+        "at their own level (the geometry and the initial damage sampled "
+        "there) instead of split ones. The passes stop early once one "
+        "refines nothing; the run proper then starts on the last mesh. An "
+        "<Initial region> found from the loading itself.");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -142,6 +154,7 @@ namespace scarp
       refinement_driver_fraction = prm.get_double("Driver fraction");
       refinement_buffer          = prm.get_double("Buffer");
       refinement_interval        = prm.get_integer("Interval");
+      setup_passes               = prm.get_integer("Set-up passes");
       initial_levels             = prm.get_integer("Initial levels");
       {
         const auto c =

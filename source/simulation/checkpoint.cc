@@ -27,7 +27,7 @@ namespace scarp
       /// Bump when the content of a checkpoint changes (the loop state of
       /// the Simulation, the particle properties, the files): older
       /// checkpoints are then refused by name.
-      constexpr unsigned int format_version = 4;
+      constexpr unsigned int format_version = 5;
       const std::string      magic          = "scarp checkpoint";
 
       /// The signal that asked for a stop (0: none); set by the handler.

@@ -71,6 +71,8 @@ namespace scarp
       MPI_Barrier(communicator);
       wall_clock.restart();
       setup();
+      if (!checkpoint.resuming())
+        run_setup_passes();
       pcout << "scarp: " << dim << "D, "
             << grid.triangulation().n_global_active_cells() << " cells, "
             << last_report.n_points << " material points on "
@@ -182,25 +184,10 @@ namespace scarp
                       break;
                     }
                 }
-              if (stage.settle)
+              if (stage.settle && stage_settled(stage))
                 {
-                  loop.stage.peak_kinetic =
-                    std::max(loop.stage.peak_kinetic,
-                             last_report.kinetic_energy);
-                  const bool quiet =
-                    loop.step - loop.stage.start_step > 20 &&
-                    last_report.kinetic_energy <=
-                      stage.kinetic_ratio * loop.stage.peak_kinetic;
-                  if (!quiet)
-                    loop.stage.settled_since = -1;
-                  else if (loop.stage.settled_since < 0)
-                    loop.stage.settled_since = loop.time;
-                  if (quiet &&
-                      loop.time - loop.stage.settled_since >= stage.settle_time)
-                    {
-                      reason = "kinetic energy settled";
-                      break;
-                    }
+                  reason = "kinetic energy settled";
+                  break;
                 }
               checkpoint_if_due();
             }
@@ -251,6 +238,78 @@ namespace scarp
                  std::max(wall_clock.wall_time(), 1e-9)
             << " particle-steps/s. Output in " << output_directory << "/"
             << std::endl;
+    }
+
+
+    template <int dim>
+    bool
+    Simulation<dim>::stage_settled(const Stage &stage)
+    {
+      loop.stage.peak_kinetic =
+        std::max(loop.stage.peak_kinetic, last_report.kinetic_energy);
+      const bool quiet = loop.step - loop.stage.start_step > 20 &&
+                         last_report.kinetic_energy <=
+                           stage.kinetic_ratio * loop.stage.peak_kinetic;
+      if (!quiet)
+        loop.stage.settled_since = -1;
+      else if (loop.stage.settled_since < 0)
+        loop.stage.settled_since = loop.time;
+      return quiet && loop.time - loop.stage.settled_since >= stage.settle_time;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::run_setup_passes()
+    {
+      const Stage &stage   = stages.front();
+      const bool   outputs = outputs_enabled;
+      outputs_enabled      = false;
+      for (unsigned int pass = 1; pass <= grid.setup_passes; ++pass)
+        {
+          const unsigned int passes_before = loop.counters.refinement_passes;
+          const double       start_wall    = wall_clock.wall_time();
+          loop.stage.in_progress           = true;
+          while (loop.time < stage.end_time * (1 - 1e-12))
+            {
+              advance(stage);
+              if (stage.settle && stage_settled(stage))
+                break;
+            }
+          const unsigned int refined =
+            loop.counters.refinement_passes - passes_before;
+          pcout << "Set-up pass " << pass << ": stage " << stage.name << ", "
+                << loop.step << " steps to t = " << loop.time << " s, "
+                << refined << " refinement passes, "
+                << grid.triangulation().n_global_active_cells() << " cells ("
+                << format_seconds(wall_clock.wall_time() - start_wall) << ")"
+                << std::endl;
+          // The points of the pass are discarded in any case: the run proper
+          // starts from the seeding, not from a loaded state.
+          RunCounters counters = loop.counters;
+          ++counters.setup_passes;
+          counters.setup_steps += loop.step;
+          counters.refinement_checks = 0;
+          counters.refinement_passes = 0;
+          counters.points_split      = 0;
+          particles.clear();
+          seed_bodies();
+          if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+            balance_load();
+          mpm->setup();
+          local_boxes.clear();
+          precursor_ids.clear();
+          if (averager)
+            averager->invalidate_neighbour_lists();
+          start_loop_state();
+          loop.counters = counters;
+          pcout << "Set-up pass " << pass << ": bodies seeded anew, "
+                << static_cast<unsigned long long>(last_report.n_points)
+                << " material points" << std::endl;
+          if (refined == 0)
+            break;
+        }
+      outputs_enabled = outputs;
     }
 
 

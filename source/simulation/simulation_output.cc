@@ -189,6 +189,12 @@ namespace scarp
           refinement.add("passes", double(loop.counters.refinement_passes));
           refinement.add("points_split", double(loop.counters.points_split));
           refinement.add("finest_cell", grid.minimum_cell_size());
+          if (grid.setup_passes > 0)
+            {
+              refinement.add("setup_passes",
+                             double(loop.counters.setup_passes));
+              refinement.add("setup_steps", double(loop.counters.setup_steps));
+            }
           summary.add("refinement", refinement);
         }
       summary.add("time", loop.time);

@@ -461,6 +461,21 @@ namespace scarp
           "material damages, but no material of this scene has damage "
           "(<Model> = chalk); switch it off, or use <Initial levels> and "
           "<Initial region> for a fixed refined region.");
+      if (grid.setup_passes > 0)
+        {
+          const std::string what = "Mesh/Refinement: <Set-up passes> = " +
+                                   std::to_string(grid.setup_passes);
+          if (!grid.adaptive_refinement)
+            throw ScarpError(what + " needs <Adaptive refinement> = true.");
+          if (stages.size() < 2 || stages.front().damage)
+            throw ScarpError(
+              what +
+              " reruns the first stage, which must be a loading stage "
+              "without damage followed by another stage (this scene's "
+              "first stage, " +
+              stages.front().name +
+              (stages.size() < 2 ? ", is its only one)." : ", has damage)."));
+        }
     }
 
 

@@ -54,6 +54,15 @@ namespace scarp
       mpm->set_mass_cutoff_density(transfer_parameters.mass_cutoff * rho_max);
       if (checkpoint.resuming())
         return; // the loop state came with the checkpoint
+      start_loop_state();
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::start_loop_state()
+    {
+      loop        = LoopState();
       last_report = measure();
       loop.energy.initial =
         last_report.kinetic_energy + last_report.gravitational_energy;
@@ -284,6 +293,10 @@ namespace scarp
     Simulation<2>::balance_load();
     template void
     Simulation<3>::balance_load();
+    template void
+    Simulation<2>::start_loop_state();
+    template void
+    Simulation<3>::start_loop_state();
     template void
     Simulation<2>::seed_bodies();
     template void

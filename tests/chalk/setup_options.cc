@@ -12,6 +12,13 @@
 //   (r <= w, else 0) with its history kappa consistent (d(kappa) = d); the
 //   points fill the slab under the beach; a layer that does not fit in the
 //   mesh is refused with a message naming the entries.
+// setup_passes: the band refines (damage criterion) in a loading stage;
+//   with Mesh/Refinement/Set-up passes the bodies are seeded anew on the
+//   refined mesh: every point carries the lattice volume of its own cell and
+//   the closed-form damage at its own position, nothing is split in the run
+//   proper. Without them the split points inherit their parent's damage
+//   (the check fails by > 0.05). On 2 ranks the same, and the same points
+//   and cells as a serial copy.
 
 #include <deal.II/base/mpi.h>
 
@@ -204,6 +211,136 @@ namespace
             message.find("Mesh/Lower corner") != std::string::npos,
           "a layer outside the mesh is refused, naming the entries");
   }
+
+
+  /// @p tag names the output directory; @p serial_copy: a copy on
+  /// MPI_COMM_SELF of every rank, whose directory carries the rank.
+  std::string
+  setup_pass_scene(const unsigned int passes,
+                   const std::string &tag,
+                   const bool         serial_copy = false)
+  {
+    const std::string directory =
+      "output_" + tag +
+      (serial_copy ? "_" + std::to_string(
+                             Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
+                   : "");
+    std::string text = cliff_scene(-1);
+    // Coarse cells 0.25 m, one level: the refined cells are those of
+    // crack_band_base_layer. No gravity: nothing moves, so the closed form
+    // holds at the points' positions after the stages.
+    const auto replace = [&](const std::string &a, const std::string &b) {
+      const auto k = text.find(a);
+      AssertThrow(k != std::string::npos, ExcMessage("scene text: " + a));
+      text.replace(k, a.size(), b);
+    };
+    replace("set Stages = run", "set Stages = load, hold");
+    replace("output_band", directory);
+    replace("set Cell size = 0.125", "set Cell size = 0.25");
+    replace(stage_text("run", 1e-4),
+            stage_text("load", 2e-3, false, false) +
+              stage_text("hold", 3e-3, false, false));
+    return text +
+           "subsection Mesh\n  subsection Refinement\n"
+           "    set Adaptive refinement = true\n    set Maximum level = 1\n"
+           "    set Interval = 5\n    set Set-up passes = " +
+           std::to_string(passes) +
+           "\n  end\nend\n"
+           "subsection Physics\n  set Gravity = 0, 0\nend\n"
+           "subsection Output\n  set Interval = 0\nend\n";
+  }
+
+
+  /// Largest |d - exp(-(r/w)^4)| over the points of the small cliff (its
+  /// crack 1 m behind the crest, from y = 2 to 4; w = sqrt(7) l_c), and
+  /// largest |V0 - (h_K/2)^2| / (h_K/2)^2 with h_K the point's cell.
+  std::pair<double, double>
+  seeding_errors(const simulation::Simulation<dim> &sim)
+  {
+    const unsigned int s   = sim.property_layout().state;
+    const unsigned int v   = sim.property_layout().reference_volume;
+    const double       x_k = 6. - 2.5 / std::tan(78. * M_PI / 180.) - 1.;
+    const double       w   = std::sqrt(7.) * 0.18;
+    double             dd = 0, dv = 0;
+    for (const auto &particle : sim.particle_handler())
+      {
+        const double    *p = particle.get_properties().data();
+        const Point<dim> x = particle.get_location();
+        const double     y = std::clamp(x[1], 2., 4.);
+        const double     r = std::hypot(x[0] - x_k, x[1] - y);
+        const double     e = r > w ? 0. : std::exp(-std::pow(r / w, 4));
+        dd                 = std::max(dd,
+                      std::abs(p[s + materials::Chalk::damage_variable] -
+                               (e > 1. - 1e-6 ? 1. : e)));
+        const auto   cell  = particle.get_surrounding_cell();
+        const double h     = cell->vertex(1)[0] - cell->vertex(0)[0];
+        dv = std::max(dv, std::abs(p[v] - 0.25 * h * h) / (0.25 * h * h));
+      }
+    const MPI_Comm comm = scarp_test::communicator_of(sim);
+    return {Utilities::MPI::max(dd, comm), Utilities::MPI::max(dv, comm)};
+  }
+
+
+  void
+  setup_passes()
+  {
+    auto sim =
+      make_scene<dim>(setup_pass_scene(3, "passes"), MPI_COMM_WORLD, "passes");
+    sim->run();
+    const auto &counters = sim->loop_state().counters;
+    const auto [dd, dv]  = seeding_errors(*sim);
+    const double n_cells =
+      sim->background_grid().triangulation().n_global_active_cells();
+    const double n_points = sim->measure().n_points;
+    out() << "  set-up passes " << counters.setup_passes << " ("
+          << counters.setup_steps
+          << " steps), run proper: " << counters.refinement_passes
+          << " refinement passes, " << counters.points_split
+          << " points split; " << std::setprecision(12) << n_cells << " cells, "
+          << n_points << " points; max |d - closed form| " << dd
+          << ", max |V0 / (h_K/2)^2 - 1| " << dv << std::endl;
+    // Pass 1 refines the band's cells to the maximum level, pass 2 finds
+    // nothing more to refine and stops the passes; the run proper repeats
+    // pass 2 on the same points, so it refines and splits nothing.
+    check(counters.setup_passes == 2 && counters.setup_steps > 0,
+          "two set-up passes (the second refines nothing)");
+    check(n_cells > 24. * 40., "the mesh refined around the band");
+    check(counters.refinement_passes == 0 && counters.points_split == 0,
+          "the run proper refines and splits nothing");
+    // Lattice volumes are (h/2)^2 exactly in binary for h = 0.25, 0.125;
+    // the damage is the same few flops in another order (1e-15).
+    check(dv <= 1e-14, "every point carries the lattice volume of its cell");
+    check(dd <= 1e-14, "initial damage = exp(-(r/w)^4) at every point");
+
+    // Without the passes the band cells refine in the run proper and the
+    // split points keep their parent's damage: the check above fails.
+    auto plain =
+      make_scene<dim>(setup_pass_scene(0, "plain"), MPI_COMM_WORLD, "plain");
+    plain->run();
+    const auto [dd0, dv0] = seeding_errors(*plain);
+    out() << "  without set-up passes: "
+          << plain->loop_state().counters.points_split
+          << " points split; max |d - closed form| " << dd0 << std::endl;
+    check(plain->loop_state().counters.points_split > 0 && dd0 > 0.05,
+          "without the passes split points inherit their parent's damage");
+
+    // On 2 ranks the mesh and the seeding are those of a serial run.
+    if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      {
+        auto serial =
+          make_scene<dim>(setup_pass_scene(3, "passes_serial", true),
+                          MPI_COMM_SELF,
+                          "passes_serial");
+        serial->run();
+        const double n_cells_1 =
+          serial->background_grid().triangulation().n_global_active_cells();
+        const double n_points_1 = serial->measure().n_points;
+        out() << "  serial copy: " << std::setprecision(12) << n_cells_1
+              << " cells, " << n_points_1 << " points" << std::endl;
+        check(n_cells_1 == n_cells && n_points_1 == n_points,
+              "the same cells and points as a serial run");
+      }
+  }
 } // namespace
 
 int
@@ -213,5 +350,6 @@ main(int argc, char **argv)
                                argv,
                                {{"ybar_output", ybar_output},
                                 {"crack_band_base_layer",
-                                 crack_band_base_layer}});
+                                 crack_band_base_layer},
+                                {"setup_passes", setup_passes}});
 }

@@ -8,7 +8,8 @@
 //   with one level of adaptive refinement: cells refine before the damage
 //   reaches them, points split with their mass conserved, and on 2 ranks
 //   the mesh and the physics equal the serial run;
-// - bad_input: impossible refinement settings are refused by name.
+// - bad_input: impossible refinement settings are refused by name (also
+//   Set-up passes without adaptive refinement or without a loading stage).
 #include <scarp/base/exceptions.h>
 
 #include "../chalk/chalk_tools.h"
@@ -252,7 +253,13 @@ namespace
        {"Minimum level", "Maximum level"}},
       {"    set Buffer = 0.5\n",
        "a buffer smaller than the non-local radius",
-       {"Buffer"}}};
+       {"Buffer"}},
+      {"    set Set-up passes = 1\n",
+       "set-up passes that would rerun the only stage (with damage)",
+       {"Set-up passes", "first stage", "run"}},
+      {"    set Set-up passes = 1\n    set Adaptive refinement = false\n",
+       "set-up passes without adaptive refinement",
+       {"Set-up passes", "Adaptive refinement"}}};
     for (const auto &c : cases)
       {
         const std::string message = error_of(with(c.entries));

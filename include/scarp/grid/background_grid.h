@@ -133,6 +133,9 @@ namespace scarp
       double       refinement_driver_fraction = 0.5;
       /// In cut-off radii of the non-local average.
       double refinement_buffer = 1.;
+      /// Runs of the first stage that refine the mesh and reseed the bodies
+      /// before the run proper (0: none).
+      unsigned int setup_passes = 0;
 
     private:
       MPI_Comm                                  communicator;

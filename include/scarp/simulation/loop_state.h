@@ -113,7 +113,7 @@ namespace scarp
 
     /**
      * @brief What the run has counted for summary.json: refinement, load
-     * balance, removed points.
+     * balance, removed points, set-up passes.
      */
     struct RunCounters
     {
@@ -124,13 +124,18 @@ namespace scarp
       /// Points that left the mesh and were removed (a double: summed from
       /// the reduced StepReport).
       double points_removed = 0;
+      /// Runs of the first stage before the run proper that refined the
+      /// mesh and reseeded the bodies (Mesh/Refinement/Set-up passes), and
+      /// their steps.
+      unsigned int setup_passes = 0;
+      unsigned int setup_steps  = 0;
 
       template <class Archive>
       void
       serialize(Archive &ar, const unsigned int)
       {
         ar &refinement_checks &refinement_passes &points_split &rebalances
-          &points_removed;
+          &points_removed &setup_passes &setup_steps;
       }
     };
 

@@ -81,6 +81,13 @@ namespace scarp
       void
       run_until(const double t);
 
+      /// Time, step, energies and counters of the time loop.
+      const LoopState &
+      loop_state() const
+      {
+        return loop;
+      }
+
       /// Energies, momenta and counts of the particles now (reduced).
       transfer::StepReport
       measure() const;
@@ -233,6 +240,20 @@ namespace scarp
       rebalance_if_needed();
       void
       advance(const Stage &stage);
+      /// The settling criterion of @p stage after a step: true once the
+      /// kinetic energy has stayed below its ratio of the stage's peak for
+      /// the settle time (updates loop.stage).
+      bool
+      stage_settled(const Stage &stage);
+      /// Mesh/Refinement/Set-up passes: run the first stage without output,
+      /// and after a pass that refined the mesh discard the points, seed
+      /// the bodies anew on the refined mesh and reset the loop state.
+      void
+      run_setup_passes();
+      /// Loop state and energy reference of a fresh start on the current
+      /// points (set-up, and after a set-up pass).
+      void
+      start_loop_state();
       /// The reference volume of the points faster than @p speed (all
       /// ranks; collective): the onset of a failure and the end of mass
       /// scaling need more than a point or two (a flake at the notch).
