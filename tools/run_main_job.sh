@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs the dependencies, builds, runs the Joss Bay cliff
-# collapse (prm/joss_bay.prm) on all cores and draws its pictures.
+# collapse (prm/joss_bay.prm: the converged setting, to 0.5 s after the
+# failure onset, about 9 min on 2 cores) on all cores and draws its
+# pictures.
 # Usage: tools/run_main_job.sh [scene.prm]   (default prm/joss_bay.prm)
 set -euo pipefail
 cd "$(dirname "$0")/.."

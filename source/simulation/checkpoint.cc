@@ -27,7 +27,7 @@ namespace scarp
       /// Bump when the content of a checkpoint changes (the loop state of
       /// the Simulation, the particle properties, the files): older
       /// checkpoints are then refused by name.
-      constexpr unsigned int format_version = 5;
+      constexpr unsigned int format_version = 4;
       const std::string      magic          = "scarp checkpoint";
 
       /// The signal that asked for a stop (0: none); set by the handler.
@@ -54,6 +54,41 @@ namespace scarp
         std::ostringstream s;
         s << std::hex << std::setw(16) << std::setfill('0') << h;
         return s.str();
+      }
+
+      /// The entries of @p text (ShortPRM) whose value differs from
+      /// @p defaults (the same declarations, unset), one per line with its
+      /// subsection path: what a scene file really sets. Entries a later
+      /// scarp adds (at their defaults) leave it unchanged.
+      std::string
+      changed_entries(const std::string &text, const std::string &defaults)
+      {
+        std::istringstream       a(text), b(defaults);
+        std::string              line, default_line, out;
+        std::vector<std::string> path;
+        while (std::getline(a, line))
+          {
+            if (!std::getline(b, default_line))
+              return text; // another structure: the whole text
+            const auto first = line.find_first_not_of(' ');
+            if (first == std::string::npos)
+              continue;
+            const std::string trimmed = line.substr(first);
+            if (trimmed.rfind("subsection ", 0) == 0)
+              path.push_back(trimmed.substr(11));
+            else if (trimmed == "end")
+              {
+                if (!path.empty())
+                  path.pop_back();
+              }
+            else if (line != default_line)
+              {
+                for (const auto &p : path)
+                  out += p + "/";
+                out += trimmed + "\n";
+              }
+          }
+        return out;
       }
 
       /// Whether @p directory holds a manifest whose last line is "end".
@@ -112,14 +147,18 @@ namespace scarp
         "that holds one in checkpoint/) instead of seeding the bodies; "
         "empty: start afresh. The command line's --resume overrides it. "
         "The checkpoint must come from this scene: every entry but those "
-        "of this subsection and <Output directory> must be the same.");
+        "of this subsection, <Output directory> and the stages' <End time> "
+        "must be the same.");
       prm.leave_subsection();
     }
 
 
     template <int dim>
     void
-    Checkpoint<dim>::parse_parameters(ParameterHandler &prm)
+    Checkpoint<dim>::parse_parameters(
+      ParameterHandler               &prm,
+      const std::vector<std::string> &stage_names,
+      const std::string              &defaults)
     {
       output_directory = prm.get("Output directory");
       prm.enter_subsection("Checkpoint");
@@ -131,8 +170,9 @@ namespace scarp
       prm.leave_subsection();
       next_time = time_interval;
 
-      // The fingerprint of the scene: every entry, with those that may
-      // differ between a run and its restart set to their defaults.
+      // The fingerprint of the scene: every entry that differs from its
+      // default, with those that may differ between a run and its restart
+      // set to their defaults.
       const std::vector<std::pair<std::string, std::string>> free_entries{
         {"Wall time interval", "0"},
         {"Time interval", "0"},
@@ -146,16 +186,33 @@ namespace scarp
           prm.set(name, value);
         }
       prm.leave_subsection();
+      // The stages' end times: a resumed run may stop earlier or go on
+      // longer than the run that wrote the checkpoint (the end time only
+      // decides when the loop stops).
+      std::vector<std::string> end_times;
+      for (const auto &name : stage_names)
+        {
+          prm.enter_subsection("Stage " + name);
+          end_times.push_back(prm.get("End time"));
+          prm.set("End time", "1");
+          prm.leave_subsection();
+        }
       const std::string directory = prm.get("Output directory");
       prm.set("Output directory", "output");
       std::ostringstream text;
       prm.print_parameters(text, ParameterHandler::ShortPRM);
       prm.set("Output directory", directory);
+      for (std::size_t k = 0; k < stage_names.size(); ++k)
+        {
+          prm.enter_subsection("Stage " + stage_names[k]);
+          prm.set("End time", end_times[k]);
+          prm.leave_subsection();
+        }
       prm.enter_subsection("Checkpoint");
       for (std::size_t k = 0; k < free_entries.size(); ++k)
         prm.set(free_entries[k].first, saved[k]);
       prm.leave_subsection();
-      scene_hash = fingerprint(text.str());
+      scene_hash = fingerprint(changed_entries(text.str(), defaults));
     }
 
 
@@ -418,8 +475,9 @@ namespace scarp
       if (hash != scene_hash)
         return "it was written for another scene (scene fingerprint " + hash +
                ", this scene's is " + scene_hash +
-               "): every entry but those of <Checkpoint> and <Output "
-               "directory> must be the same as in the run that wrote it.";
+               "): every entry but those of <Checkpoint>, <Output "
+               "directory> and the stages' <End time> must be the same as in "
+               "the run that wrote it.";
       if (saved_properties != properties)
         return "its material points carry other properties (" +
                saved_properties + ") than this scarp gives them (" +

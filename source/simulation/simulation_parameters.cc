@@ -413,7 +413,14 @@ namespace scarp
       growth_tolerance = prm.get_double("Energy growth tolerance");
       remove_outside   = prm.get("Points leaving the mesh") == "remove";
       prm.leave_subsection();
-      checkpoint.parse_parameters(prm);
+      {
+        // The defaults of this scene's declarations, for the fingerprint.
+        ParameterHandler unset;
+        declare_parameters(unset, lists);
+        std::ostringstream defaults;
+        unset.print_parameters(defaults, ParameterHandler::ShortPRM);
+        checkpoint.parse_parameters(prm, lists.stages, defaults.str());
+      }
 
       // The particle layout holds only what this scene needs.
       std::vector<std::string> state_names;

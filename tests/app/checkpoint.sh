@@ -8,7 +8,8 @@
 #       on 2) and written on 2 ranks, resumed on 1; statistics rows and
 #       summary.json numbers compared (compare_runs.py), no duplicated
 #       statistics rows or PVD records. chalk: damage with its non-local
-#       average; refined: the same with adaptive refinement.
+#       average; refined: the same with adaptive refinement. elastic also:
+#       resumed with a later <End time> equals a run made to it at once.
 #   kill     a run killed (SIGKILL) while writing its third checkpoint
 #       (test hook SCARP_TEST_KILL_IN_CHECKPOINT) leaves checkpoint.tmp
 #       behind and resumes from the previous checkpoint (the one at the end
@@ -208,6 +209,16 @@ case "$case" in
     # Same ranks: bitwise (to the 10 digits of statistics.csv); 2 -> 1
     # rank: other sums, round-off.
     restart_case elastic_scene "" 100 1e-12 1e-9
+    # The stages' End time may change on resume: stopped at step 100 of a
+    # run to 0.6 s and resumed to 0.8 s, the run equals one made to 0.8 s
+    # in one go (bitwise, as above).
+    elastic_scene full8 | sed 's/End time = 0.6/End time = 0.8/' > full8.prm
+    elastic_scene ext > ext.prm
+    expect_status "$(run full8 1)" 0 "uninterrupted run to 0.8 s"
+    expect_status "$(SCARP_TEST_SIGTERM_AT_STEP=100 run ext 1)" 1 "run to 0.6 s stopped at step 100"
+    sed -i 's/End time = 0.6/End time = 0.8/' ext.prm
+    expect_status "$(run ext 1 --resume ext)" 0 "resumed with End time 0.8 s"
+    /usr/bin/python3 "$compare" full8 ext 1e-12 || fails=$((fails + 1))
     ;;
   chalk)
     restart_case chalk_scene false 250 1e-12 1e-6

@@ -51,9 +51,14 @@ namespace scarp
       static void
       declare_parameters(ParameterHandler &prm);
       /// Reads the subsection Checkpoint and <Output directory>, and
-      /// fingerprints the scene (at the top level of @p prm).
+      /// fingerprints the scene (at the top level of @p prm): the entries
+      /// that differ from @p defaults (the ShortPRM text of the same
+      /// declarations, unset), but those of Checkpoint, <Output directory>
+      /// and the <End time> of the stages @p stage_names.
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler               &prm,
+                       const std::vector<std::string> &stage_names,
+                       const std::string              &defaults);
 
       /// The names of the particle properties (the layout this scene's
       /// points carry): a checkpoint whose points carry others, from

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/types.h>
 
+#include <boost/serialization/version.hpp>
+
 namespace scarp
 {
   namespace simulation
@@ -130,12 +132,16 @@ namespace scarp
       unsigned int setup_passes = 0;
       unsigned int setup_steps  = 0;
 
+      /// Version 1 added the set-up passes; checkpoints of version 0
+      /// (before them) are read with none.
       template <class Archive>
       void
-      serialize(Archive &ar, const unsigned int)
+      serialize(Archive &ar, const unsigned int version)
       {
         ar &refinement_checks &refinement_passes &points_split &rebalances
-          &points_removed &setup_passes &setup_steps;
+          &points_removed;
+        if (version >= 1)
+          ar &setup_passes &setup_steps;
       }
     };
 
@@ -193,5 +199,7 @@ namespace scarp
     };
   } // namespace simulation
 } // namespace scarp
+
+BOOST_CLASS_VERSION(scarp::simulation::RunCounters, 1)
 
 #endif
