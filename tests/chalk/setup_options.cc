@@ -126,6 +126,22 @@ namespace
   }
 
 
+  /// The initial damage of cliff_scene() at @p x in closed form: crest =
+  /// knee x = 6 - 2.5 cot 78, crack centre line 1 m behind it from y = 2
+  /// to 4, d = exp(-(r/w)^4) within w = sqrt(7) l_c of it; d > 1 - 1e-6 is
+  /// rounded to 1 by the model (as update_damage does).
+  double
+  band_damage(const Point<dim> &x)
+  {
+    const double x_k = 6. - 2.5 / std::tan(78. * M_PI / 180.) - 1.;
+    const double w   = std::sqrt(7.) * 0.18;
+    const double y   = std::clamp(x[1], 2., 4.);
+    const double r   = std::hypot(x[0] - x_k, x[1] - y);
+    const double d   = r > w ? 0. : std::exp(-std::pow(r / w, 4));
+    return d > 1. - 1e-6 ? 1. : d;
+  }
+
+
   void
   crack_band_base_layer()
   {
@@ -136,22 +152,11 @@ namespace
     const unsigned int s = sim->property_layout().state;
     const unsigned int v = sim->property_layout().reference_volume;
 
-    // Closed form: crest = knee x = 6 - 2.5 cot 78, crack centre line 1 m
-    // behind it from y = 2 to 4, w = sqrt(7) l_c.
-    const double x_k      = 6. - 2.5 / std::tan(78. * M_PI / 180.) - 1.;
-    const double w        = std::sqrt(7.) * 0.18;
-    const auto   expected = [&](const Point<dim> &x) {
-      const double y = std::clamp(x[1], 2., 4.);
-      const double r = std::hypot(x[0] - x_k, x[1] - y);
-      return r > w ? 0. : std::exp(-std::pow(r / w, 4));
-    };
-    // d: the same few flops in another order, round-off 1e-15; d > 1 -
-    // 1e-6 is rounded to 1 by the model (as update_damage does).
+    // d: the same few flops in another order, round-off 1e-15.
     const double dd = scarp_test::max_over_points<dim>(
       *sim, [&](const double *p, const Point<dim> &x) {
-        const double e = expected(x);
         return std::abs(p[s + materials::Chalk::damage_variable] -
-                        (e > 1. - 1e-6 ? 1. : e));
+                        band_damage(x));
       });
     // kappa: bisection to round-off; d(kappa) then agrees to ~1e-15 times
     // the slope kappa dd/dkappa (< 10 here): 1e-12 is ample.
@@ -257,23 +262,17 @@ namespace
   std::pair<double, double>
   seeding_errors(const simulation::Simulation<dim> &sim)
   {
-    const unsigned int s   = sim.property_layout().state;
-    const unsigned int v   = sim.property_layout().reference_volume;
-    const double       x_k = 6. - 2.5 / std::tan(78. * M_PI / 180.) - 1.;
-    const double       w   = std::sqrt(7.) * 0.18;
+    const unsigned int s  = sim.property_layout().state;
+    const unsigned int v  = sim.property_layout().reference_volume;
     double             dd = 0, dv = 0;
     for (const auto &particle : sim.particle_handler())
       {
-        const double    *p = particle.get_properties().data();
-        const Point<dim> x = particle.get_location();
-        const double     y = std::clamp(x[1], 2., 4.);
-        const double     r = std::hypot(x[0] - x_k, x[1] - y);
-        const double     e = r > w ? 0. : std::exp(-std::pow(r / w, 4));
-        dd                 = std::max(dd,
+        const double *p   = particle.get_properties().data();
+        dd                = std::max(dd,
                       std::abs(p[s + materials::Chalk::damage_variable] -
-                               (e > 1. - 1e-6 ? 1. : e)));
-        const auto   cell  = particle.get_surrounding_cell();
-        const double h     = cell->vertex(1)[0] - cell->vertex(0)[0];
+                               band_damage(particle.get_location())));
+        const auto   cell = particle.get_surrounding_cell();
+        const double h    = cell->vertex(1)[0] - cell->vertex(0)[0];
         dv = std::max(dv, std::abs(p[v] - 0.25 * h * h) / (0.25 * h * h));
       }
     const MPI_Comm comm = scarp_test::communicator_of(sim);
