@@ -44,6 +44,21 @@ namespace scarp
                         Patterns::Double(0.),
                         "Coulomb friction coefficient [-] of faces of type "
                         "friction.");
+      prm.declare_entry(
+        "Friction contact",
+        "consistent",
+        Patterns::Selection("consistent|legacy"),
+        "How a friction face decides contact within a step. consistent: the "
+        "faces the end velocity of the grid update presses on are in "
+        "contact for the whole step (the MUSL remap keeps their normal "
+        "velocity at zero, no second friction), and the FLIP points lose "
+        "the normal velocity the face stops and feel its friction. legacy: "
+        "the start velocity, the end velocity and the MUSL remap each "
+        "decide by their own direction (scarp before 2026-12): a body that "
+        "separates from the face gains energy and FLIP points keep a "
+        "normal velocity that brakes the grid every step; kept only to "
+        "reproduce results obtained with it (doc/user_guide.md, Energy "
+        "balance).");
       prm.enter_subsection("Prescribed velocity");
       prm.declare_entry(
         "Face",
@@ -92,7 +107,8 @@ namespace scarp
       prm.enter_subsection("Boundary conditions");
       for (unsigned int f = 0; f < 2 * dim; ++f)
         types[f] = by_name.at(prm.get(face_name(f)));
-      friction_coefficient = prm.get_double("Friction coefficient");
+      friction_coefficient    = prm.get_double("Friction coefficient");
+      legacy_friction_contact = prm.get("Friction contact") == "legacy";
       prm.enter_subsection("Prescribed velocity");
       const std::string where =
         "Mesh/Boundary conditions/Prescribed velocity: ";
@@ -305,43 +321,63 @@ namespace scarp
       const double                         mass_scale) const
     {
       // The conditions of one node, applied to the velocity v in place.
-      const auto constrain = [&](const Node &node, Tensor<1, dim> &v) {
-        for (unsigned int f = 0; f < 2 * dim; ++f)
-          if (node.faces & (1u << f))
-            {
-              const unsigned int axis = f / 2;
-              const double       sign = (f % 2) ? 1. : -1.; // outward
-              switch (types[f])
-                {
-                  case BoundaryType::fixed:
-                    v = 0;
-                    break;
-                  case BoundaryType::slip:
-                    v[axis] = 0;
-                    break;
-                  case BoundaryType::friction:
-                    {
-                      const double v_normal = sign * v[axis];
-                      if (v_normal > 0) // moving into the face
-                        {
-                          v[axis]                   = 0;
-                          const double v_tangential = v.norm();
-                          if (v_tangential > 0)
-                            v *= std::max(0.,
-                                          1. - friction_coefficient * v_normal /
-                                                 v_tangential);
-                        }
-                      break;
-                    }
-                  case BoundaryType::free:
-                    break;
-                }
-            }
-        if (node.faces & prescribed_bit)
-          for (unsigned int d = 0; d < dim; ++d)
-            if (!normal_only || d == prescribed_face / 2)
-              v[d] = prescribed_velocity[d];
+      // Friction faces by pass: the grid update (end velocity) decides
+      // contact by its own direction and records it in node.contact; the
+      // start velocity and the MUSL remap (consistent contact) take the
+      // normal velocity off the faces in contact only, without friction;
+      // legacy contact treats every pass like the grid update.
+      enum class Pass
+      {
+        update,
+        start,
+        remap
       };
+      const auto constrain =
+        [&](const Node &node, Tensor<1, dim> &v, const Pass pass) {
+          for (unsigned int f = 0; f < 2 * dim; ++f)
+            if (node.faces & (1u << f))
+              {
+                const unsigned int axis = f / 2;
+                const double       sign = (f % 2) ? 1. : -1.; // outward
+                switch (types[f])
+                  {
+                    case BoundaryType::fixed:
+                      v = 0;
+                      break;
+                    case BoundaryType::slip:
+                      v[axis] = 0;
+                      break;
+                    case BoundaryType::friction:
+                      {
+                        if (pass != Pass::update && !legacy_friction_contact)
+                          {
+                            if (node.contact & (1u << f))
+                              v[axis] = 0;
+                            break;
+                          }
+                        const double v_normal = sign * v[axis];
+                        if (v_normal > 0) // moving into the face
+                          {
+                            if (pass == Pass::update)
+                              node.contact |= (1u << f);
+                            v[axis]                   = 0;
+                            const double v_tangential = v.norm();
+                            if (v_tangential > 0)
+                              v *= std::max(0.,
+                                            1. - friction_coefficient *
+                                                   v_normal / v_tangential);
+                          }
+                        break;
+                      }
+                    case BoundaryType::free:
+                      break;
+                  }
+              }
+          if (node.faces & prescribed_bit)
+            for (unsigned int d = 0; d < dim; ++d)
+              if (!normal_only || d == prescribed_face / 2)
+                v[d] = prescribed_velocity[d];
+        };
 
       double removed = 0.;
       for (const Node &node : nodes)
@@ -350,7 +386,9 @@ namespace scarp
           for (unsigned int d = 0; d < dim; ++d)
             v[d] = (*velocity[d])(node.dof);
           const Tensor<1, dim> v_free = v;
-          constrain(node, v);
+          if (start_velocity)
+            node.contact = 0;
+          constrain(node, v, start_velocity ? Pass::update : Pass::remap);
           for (unsigned int d = 0; d < dim; ++d)
             (*velocity[d])(node.dof) = v[d];
           if (!start_velocity)
@@ -364,8 +402,33 @@ namespace scarp
           Tensor<1, dim> v_raw;
           for (unsigned int d = 0; d < dim; ++d)
             v_raw[d] = (*(*start_velocity)[d])(node.dof);
-          Tensor<1, dim> v_start = v_raw;
-          constrain(node, v_start);
+          // v_work: the start velocity the stress sees (the remap keeps the
+          // contact faces' normal velocity at zero). v_start: the one the
+          // FLIP update v_p + S (v - v_start) starts from. Fixed and slip
+          // faces take the normal velocity off both: FLIP points keep the
+          // velocity a wall stops, harmless there since every step removes
+          // it again. Consistent friction faces leave v_start as P2G gave
+          // it: a normal velocity kept by the points would brake the
+          // grid's tangential velocity anew every step, and the friction
+          // would not reach them; so they lose what the face stops.
+          Tensor<1, dim> v_work = v_raw;
+          constrain(node, v_work, Pass::start);
+          Tensor<1, dim> v_start = v_work;
+          if (!legacy_friction_contact && node.contact != 0)
+            {
+              v_start = v_raw;
+              for (unsigned int f = 0; f < 2 * dim; ++f)
+                if ((node.faces & (1u << f)) &&
+                    types[f] != BoundaryType::friction)
+                  {
+                    if (types[f] == BoundaryType::fixed)
+                      v_start = 0;
+                    else if (types[f] == BoundaryType::slip)
+                      v_start[f / 2] = 0;
+                  }
+              if (node.faces & prescribed_bit)
+                v_start = v_work;
+            }
           for (unsigned int d = 0; d < dim; ++d)
             (*(*start_velocity)[d])(node.dof) = v_start[d];
           const Tensor<1, dim> dv = v - v_start;
@@ -376,12 +439,12 @@ namespace scarp
             // start is an inelastic impact).
             removed += mass(node.dof) * ((v_free - v) * (v_start + v)) / 2;
           else
-            // The forces' work over the constrained velocities (what the
-            // stress power at the points sees) less the kinetic energy the
-            // points' FLIP update v_p + S (v - v_start) draws from the
-            // node, p . dv + m |dv|^2 / 2 with the node's P2G momentum
-            // p = m v_raw: zero where no condition acts.
-            removed += mass(node.dof) * ((v_free - v_raw) * (v_start + v) / 2 -
+            // The forces' work over the velocities the stress power at the
+            // points sees, (v_work + v)/2, less the kinetic energy the
+            // points' FLIP update draws from the node, p . dv + m |dv|^2 / 2
+            // with the node's P2G momentum p = m v_raw: zero where no
+            // condition acts.
+            removed += mass(node.dof) * ((v_free - v_raw) * (v_work + v) / 2 -
                                          v_raw * dv - dv.norm_square() / 2);
         }
       if (start_velocity)

@@ -71,10 +71,14 @@ namespace scarp
        * at the points sees), less the kinetic energy the points' FLIP
        * update v_p + S (v - v_s) draws from the node, m v_r . dv + m
        * |dv|^2/2 with dv = v - v_s. It is zero where no condition acts, on
-       * fixed faces and on slip faces; on friction faces the friction the
-       * points feel (a normal velocity they bring into the face is taken
-       * from the start and the end velocity alike, and FLIP points keep
-       * the tangential velocity that removes); on a prescribed velocity
+       * fixed faces and on slip faces; on friction faces the kinetic
+       * energy of the normal velocity the face stops and the friction
+       * (<Friction contact> = consistent: the faces the end velocity
+       * presses on stay in contact for the step, the call without
+       * @p start_velocity, the MUSL remap, keeps their normal velocity at
+       * zero, and v_s keeps the normal velocity for the FLIP update, while
+       * the work is taken over the start velocity without it, the one the
+       * stress sees); on a prescribed velocity
        * (which reaches the stress and the PIC share from the first step)
        * the work of its whole reaction impulse m (v_free - v) against
        * (v_s + v)/2, negative when it drives the material. The call with
@@ -129,13 +133,16 @@ namespace scarp
       {
         types::global_dof_index dof;
         unsigned int            faces; ///< bit f set: node lies on face f
+        /// Bit f set: the last grid update pressed on friction face f.
+        mutable unsigned int contact = 0;
       };
 
       /// Bit of Node::faces that marks a node of the prescribed region.
       static constexpr unsigned int prescribed_bit = 1u << (2 * dim);
 
       std::array<BoundaryType, 2 * dim> types;
-      double                            friction_coefficient = 0.;
+      double                            friction_coefficient    = 0.;
+      bool                              legacy_friction_contact = false;
       std::vector<Node>                 nodes;
 
       /// The prescribed-velocity region: face (invalid: none), box of its
