@@ -109,6 +109,10 @@ namespace scarp
                                        "wall_time"};
       if (body_force)
         columns.push_back("body_force_work");
+      if (any_mass_scaling())
+        columns.push_back("mass_scaling_dissipation");
+      if (remove_outside)
+        columns.push_back("removed_energy");
       if (reference_displacement)
         columns.push_back("reference_error");
       for (const auto &name :

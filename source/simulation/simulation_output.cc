@@ -126,6 +126,10 @@ namespace scarp
                                wall_clock.wall_time()});
       if (body_force)
         row.push_back(loop.energy.body_force_work);
+      if (any_mass_scaling())
+        row.push_back(loop.energy.mass_scaling_dissipation);
+      if (remove_outside)
+        row.push_back(loop.energy.removed_energy);
       if (reference_displacement)
         {
           double       norm         = 0;
@@ -216,6 +220,8 @@ namespace scarp
                      loop.energy.mass_scaling_dissipation);
       energies.add("boundary_dissipation", loop.energy.boundary_dissipation);
       energies.add("transfer_dissipation", loop.energy.transfer_dissipation);
+      if (remove_outside)
+        energies.add("removed_energy", loop.energy.removed_energy);
       if (body_force)
         energies.add("body_force_work", loop.energy.body_force_work);
       energies.add("plastic_dissipation", last_report.plastic_dissipation);

@@ -193,7 +193,8 @@ namespace scarp
             kinetic + report.gravitational_energy + loop.energy.internal_work +
             loop.energy.damping_dissipation + loop.energy.boundary_dissipation +
             loop.energy.mass_scaling_dissipation +
-            loop.energy.transfer_dissipation - loop.energy.body_force_work;
+            loop.energy.transfer_dissipation + loop.energy.removed_energy -
+            loop.energy.body_force_work;
           loop.energy.residual = balance - loop.energy.initial;
           loop.energy.scale    = std::max(
             {loop.energy.scale,
@@ -313,6 +314,11 @@ namespace scarp
       loop.time += loop.dt;
       ++loop.step;
       check(report, stage);
+      // Points that left the mesh are gone from the next step's measures:
+      // the balance keeps their energy from then on.
+      loop.energy.removed_energy +=
+        loop.mass_scaling.inertia_scale * report.removed_kinetic_energy +
+        report.removed_gravitational_energy;
       // The volume test runs only when a point is fast (report.max_speed is
       // reduced, so every rank takes the same branch).
       if (loop.mass_scaling.inertia_scale > 1 &&

@@ -747,6 +747,15 @@ namespace scarp
                   if (!finite)
                     report.n_not_finite += 1;
                   report.n_outside += outside;
+                  if (outside)
+                    {
+                      // The energy the point takes out of the mesh (its
+                      // measures of this step still count it).
+                      report.removed_kinetic_energy +=
+                        0.5 * p[layout.mass] * v.norm_square();
+                      report.removed_gravitational_energy -=
+                        p[layout.mass] * (gravity * x_new);
+                    }
                   report.n_too_fast += too_fast;
                   for (unsigned int d = 0; d < dim; ++d)
                     if (!(x_new[d] >= x0[d] && x_new[d] <= x0[d] + h))

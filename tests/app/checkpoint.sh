@@ -2,13 +2,14 @@
 # Checkpoint and restart (doc/user_guide.md, "Checkpoint and restart").
 # Arguments (from scarp_add_script_test): scarp, source dir, run dir,
 # mpiexec, mpi flags, then the case:
-#   elastic | chalk | refined  a run stopped by SIGTERM mid-way (test hook
+#   elastic | chalk | chalk_fbar | refined  a run stopped by SIGTERM mid-way (test hook
 #       SCARP_TEST_SIGTERM_AT_STEP, rank 0 only) and resumed equals the
 #       uninterrupted run: on 1 rank (resumed on 1), on 2 ranks (resumed
 #       on 2) and written on 2 ranks, resumed on 1; statistics rows and
 #       summary.json numbers compared (compare_runs.py), no duplicated
 #       statistics rows or PVD records. chalk: damage with its non-local
-#       average; refined: the same with adaptive refinement. elastic also:
+#       average; chalk_fbar: the same with F-bar; refined: the same with
+#       adaptive refinement. elastic also:
 #       resumed with a later <End time> equals a run made to it at once.
 #   kill     a run killed (SIGKILL) while writing its third checkpoint
 #       (test hook SCARP_TEST_KILL_IN_CHECKPOINT) leaves checkpoint.tmp
@@ -174,6 +175,13 @@ expect_status() { # status expected what
   if [ "$1" = "$2" ]; then ok "$3 (exit status $1)"; else fail "$3: exit status $1, expected $2"; fi
 }
 
+# The chalk scene with F-bar (Transfer/Volumetric averaging): F-bar keeps
+# no state of its own between steps, and a resumed run must show it.
+chalk_fbar_scene() { # output directory
+  chalk_scene "$1" false |
+    sed 's/^  set Shape functions = GIMP$/&\n  set Volumetric averaging = F-bar/'
+}
+
 # restart_case SCENE-FUNCTION ARG STOP-STEP SAME-RANKS-TOLERANCE
 #              OTHER-RANKS-TOLERANCE
 restart_case() {
@@ -222,6 +230,11 @@ case "$case" in
     ;;
   chalk)
     restart_case chalk_scene false 250 1e-12 1e-6
+    ;;
+  chalk_fbar)
+    restart_case chalk_fbar_scene "" 250 1e-12 1e-6
+    grep -q "Volumetric averaging = F-bar" full1.prm \
+      && ok "the scene runs with F-bar" || fail "F-bar not set in full1.prm"
     ;;
   refined)
     # The loaded mesh numbers its refined cells in another order than the

@@ -137,7 +137,8 @@ namespace
               const std::string &shapes,
               const std::string &scheme,
               const std::string &averaging,
-              const bool         refined)
+              const bool         refined,
+              const std::string &transfer = "FLIP")
   {
     const std::vector<double> lower(dim, 0.), upper(dim, 1.);
     std::vector<double>       corners(dim, 0.25);
@@ -159,7 +160,7 @@ namespace
            run_text(std::vector<double>(dim, 0.),
                     0.5,
                     0.01,
-                    "FLIP",
+                    transfer,
                     scheme,
                     1e30,
                     "",
@@ -213,13 +214,14 @@ namespace
   void
   cells(const std::string &shapes,
         const std::string &scheme,
-        const bool         refined = false)
+        const bool         refined  = false,
+        const std::string &transfer = "FLIP")
   {
     const double with = spread_of_J_in_cells<dim>(
-      block_scene(dim, shapes, scheme, "F-bar", refined), refined);
+      block_scene(dim, shapes, scheme, "F-bar", refined, transfer), refined);
     const double without = spread_of_J_in_cells<dim>(
-      block_scene(dim, shapes, scheme, "none", refined), refined);
-    out() << "  " << dim << "D " << shapes << "/" << scheme
+      block_scene(dim, shapes, scheme, "none", refined, transfer), refined);
+    out() << "  " << dim << "D " << shapes << "/" << scheme << "/" << transfer
           << (refined ? ", refined" : "")
           << ": spread of J within a cell, F-bar " << with << ", none "
           << without << std::endl;
@@ -234,12 +236,13 @@ namespace
 int
 main(int argc, char **argv)
 {
-  return run_cases(argc,
-                   argv,
-                   {{"increment", increment},
-                    {"cells_q1_musl", [] { cells<2>("Q1", "MUSL"); }},
-                    {"cells_gimp_musl", [] { cells<2>("GIMP", "MUSL"); }},
-                    {"cells_q1_usl_3d", [] { cells<3>("Q1", "USL"); }},
-                    {"cells_gimp_refined",
-                     [] { cells<2>("GIMP", "MUSL", true); }}});
+  return run_cases(
+    argc,
+    argv,
+    {{"increment", increment},
+     {"cells_q1_musl", [] { cells<2>("Q1", "MUSL"); }},
+     {"cells_gimp_musl", [] { cells<2>("GIMP", "MUSL"); }},
+     {"cells_gimp_musl_apic", [] { cells<2>("GIMP", "MUSL", false, "APIC"); }},
+     {"cells_q1_usl_3d", [] { cells<3>("Q1", "USL"); }},
+     {"cells_gimp_refined", [] { cells<2>("GIMP", "MUSL", true); }}});
 }

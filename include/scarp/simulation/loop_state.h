@@ -13,7 +13,7 @@ namespace scarp
      * @brief The terms of the energy balance that are sums over the steps,
      * and the balance itself after the last step:
      * E_kin + E_grav + W_int + D_damping + D_boundary + D_mass_scaling +
-     * D_transfer - W_body - E_0 = residual.
+     * D_transfer + E_removed - W_body - E_0 = residual.
      */
     struct EnergyLedger
     {
@@ -28,18 +28,25 @@ namespace scarp
       /// Kinetic energy of the scaled inertia booked as dissipated when
       /// mass scaling ends.
       double mass_scaling_dissipation = 0;
+      /// Kinetic (of the scaled inertia) plus gravitational energy of the
+      /// points removed when they left the mesh.
+      double removed_energy = 0;
       /// The largest energy of the run, the scale of the growth check.
       double scale = 0;
       /// The balance residual after the last step.
       double residual = 0;
 
+      /// Version 1 added removed_energy; checkpoints of version 0 load
+      /// with none.
       template <class Archive>
       void
-      serialize(Archive &ar, const unsigned int)
+      serialize(Archive &ar, const unsigned int version)
       {
         ar &initial &internal_work &damping_dissipation &boundary_dissipation
           &transfer_dissipation &body_force_work &mass_scaling_dissipation
             &scale &residual;
+        if (version >= 1)
+          ar &removed_energy;
       }
     };
 
@@ -201,5 +208,6 @@ namespace scarp
 } // namespace scarp
 
 BOOST_CLASS_VERSION(scarp::simulation::RunCounters, 1)
+BOOST_CLASS_VERSION(scarp::simulation::EnergyLedger, 1)
 
 #endif

@@ -259,6 +259,17 @@ namespace scarp
       /// scaling need more than a point or two (a flake at the notch).
       double
       fast_volume(const double speed) const;
+
+      /// Whether a stage scales the mass (statistics.csv then carries
+      /// mass_scaling_dissipation).
+      bool
+      any_mass_scaling() const
+      {
+        for (const Stage &stage : stages)
+          if (stage.mass_scaling > 1)
+            return true;
+        return false;
+      }
       void
       nonlocal_damage_step(const Stage &stage);
       void

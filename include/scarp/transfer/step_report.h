@@ -29,11 +29,15 @@ namespace scarp
       double boundary_dissipation = 0; ///< energy removed by the boundaries
       double transfer_dissipation = 0; ///< removed by P2G and G2P (below)
       double body_force_work      = 0; ///< by <Physics/Body force>, on grid
-      double mass                 = 0;
-      double plastic_dissipation  = 0; ///< cumulative, from material states
-      double damage_dissipation   = 0; ///< cumulative, from material states
-      double damaged_volume       = 0; ///< sum V d
-      double n_points             = 0;
+      /// Kinetic (unscaled) and gravitational energy of the points that
+      /// left the mesh in this step (removed in the sort after it).
+      double removed_kinetic_energy       = 0;
+      double removed_gravitational_energy = 0;
+      double mass                         = 0;
+      double plastic_dissipation = 0; ///< cumulative, from material states
+      double damage_dissipation  = 0; ///< cumulative, from material states
+      double damaged_volume      = 0; ///< sum V d
+      double n_points            = 0;
       std::array<double, 3> momentum{{0, 0, 0}};
       std::array<double, 3> angular_momentum{{0, 0, 0}};
       // transfer_dissipation: (points before P2G - grid after P2G) + (grid
