@@ -28,10 +28,11 @@ namespace scarp
       // far and the checkpoint's own clock; the particles and the mesh
       // travel in the triangulation's files.
       ar &loop &stage_summaries &cliff_summary &checkpoint;
-      // A plain struct of numbers.
-      boost::serialization::binary_object report(&last_report,
-                                                 sizeof(last_report));
-      ar                                 &report;
+      // A plain struct of numbers, as far as checkpoints of format 5 hold
+      // it.
+      boost::serialization::binary_object report(
+        &last_report, transfer::StepReport::checkpoint_size());
+      ar &report;
     }
 
 

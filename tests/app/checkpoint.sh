@@ -18,6 +18,8 @@
 #       the two renames (only checkpoint.old) resumes from that. A run
 #       sent SIGINT from outside writes a checkpoint and stops; a run with
 #       a wall-time interval writes checkpoints.
+#   format4  a checkpoint written by scarp before 2026-12-02 (stored in
+#       tests/app/checkpoint_format4) resumes to the uninterrupted results.
 #   refused  a checkpoint of another scene, dimension or format, with
 #       other particle properties (another scarp), a
 #       truncated or missing file, an incomplete manifest, a directory
@@ -246,6 +248,19 @@ case "$case" in
     c1=$(sed -n 's/^scarp: 2D, \([0-9]*\) cells.*/\1/p' res11.log)
     [ "$c1" -gt "$c0" ] && ok "resumed on the refined mesh ($c1 cells, $c0 at the start)" \
       || fail "resumed on $c1 cells, not refined (start: $c0)"
+    ;;
+  format4)
+    # A checkpoint written by an older scarp (tests/app/checkpoint_format4:
+    # the loop state and last report as they were, before members were
+    # added) resumes, and the run equals one made in one go now.
+    fixture="$src/tests/app/checkpoint_format4"
+    sed 's/^set Output directory = old$/set Output directory = full/' \
+      "$fixture/scene.prm" > full.prm
+    cp "$fixture/scene.prm" old.prm
+    mkdir -p old; cp -r "$fixture/checkpoint" old/checkpoint
+    expect_status "$(run full 1)" 0 "run in one go"
+    expect_status "$(run old 1 --resume old/checkpoint)" 0 "the old checkpoint resumed"
+    /usr/bin/python3 "$compare" full old 1e-12 || fails=$((fails + 1))
     ;;
   kill)
     elastic_scene full > full.prm

@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <cstddef>
 #include <string>
 
 namespace scarp
@@ -29,15 +30,11 @@ namespace scarp
       double boundary_dissipation = 0; ///< energy removed by the boundaries
       double transfer_dissipation = 0; ///< removed by P2G and G2P (below)
       double body_force_work      = 0; ///< by <Physics/Body force>, on grid
-      /// Kinetic (unscaled) and gravitational energy of the points that
-      /// left the mesh in this step (removed in the sort after it).
-      double removed_kinetic_energy       = 0;
-      double removed_gravitational_energy = 0;
-      double mass                         = 0;
-      double plastic_dissipation = 0; ///< cumulative, from material states
-      double damage_dissipation  = 0; ///< cumulative, from material states
-      double damaged_volume      = 0; ///< sum V d
-      double n_points            = 0;
+      double mass                 = 0;
+      double plastic_dissipation  = 0; ///< cumulative, from material states
+      double damage_dissipation   = 0; ///< cumulative, from material states
+      double damaged_volume       = 0; ///< sum V d
+      double n_points             = 0;
       std::array<double, 3> momentum{{0, 0, 0}};
       std::array<double, 3> angular_momentum{{0, 0, 0}};
       // transfer_dissipation: (points before P2G - grid after P2G) + (grid
@@ -63,6 +60,20 @@ namespace scarp
       std::array<double, 3> offender{{0, 0, 0}};
       bool                  has_offender = false;
 
+      // Added after checkpoint format 5 was fixed: checkpoints hold the
+      // report up to here (checkpoint_size), so that older ones load.
+      /// Kinetic (unscaled) and gravitational energy of the points that
+      /// left the mesh in this step (removed in the sort after it; summed).
+      double removed_kinetic_energy       = 0;
+      double removed_gravitational_energy = 0;
+
+      /// The bytes of a report that a checkpoint holds: the members before
+      /// removed_kinetic_energy (what the next step needs of the last
+      /// report; the removed energies are booked in the step that has
+      /// them).
+      static constexpr std::size_t
+      checkpoint_size();
+
       /// Sum/max over all ranks; the offender is taken from the lowest rank
       /// that has one.
       void
@@ -79,6 +90,12 @@ namespace scarp
       std::string
       failure_message() const;
     };
+
+    constexpr std::size_t
+    StepReport::checkpoint_size()
+    {
+      return offsetof(StepReport, removed_kinetic_energy);
+    }
   } // namespace transfer
 } // namespace scarp
 
