@@ -28,7 +28,7 @@ namespace scarp
       // far and the checkpoint's own clock; the particles and the mesh
       // travel in the triangulation's files.
       ar &loop &stage_summaries &cliff_summary &checkpoint;
-      // A plain struct of numbers, as far as checkpoints of format 5 hold
+      // A plain struct of numbers, as far as checkpoints of format 4 hold
       // it.
       boost::serialization::binary_object report(
         &last_report, transfer::StepReport::checkpoint_size());

@@ -60,7 +60,7 @@ namespace scarp
       std::array<double, 3> offender{{0, 0, 0}};
       bool                  has_offender = false;
 
-      // Added after checkpoint format 5 was fixed: checkpoints hold the
+      // Added after checkpoint format 4 was fixed: checkpoints hold the
       // report up to here (checkpoint_size), so that older ones load.
       /// Kinetic (unscaled) and gravitational energy of the points that
       /// left the mesh in this step (removed in the sort after it; summed).
