@@ -32,15 +32,20 @@ ALL_VARIANTS = [(s, t, m) for s in ("Q1", "GIMP")
                 for t in ("PIC", "FLIP", "APIC") for m in ("USL", "MUSL")]
 FEW_VARIANTS = [("Q1", "FLIP", "MUSL"), ("Q1", "FLIP", "USL"),
                 ("Q1", "APIC", "MUSL"), ("GIMP", "FLIP", "MUSL")]
+# With --fbar: the same with Transfer/Volumetric averaging = F-bar, in the
+# cfl, stiffness and poisson sweeps.
+FBAR_VARIANTS = [v + ("F-bar",) for v in FEW_VARIANTS]
+ORDER = ["/".join(v) for v in ALL_VARIANTS + FBAR_VARIANTS]
 
 
 def vname(v):
     return "/".join(v)
 
 
-def tail(shape, transfer, scheme, cfl, outdir, stats=10):
+def tail(shape, transfer, scheme, cfl, outdir, stats=10, averaging="none"):
     return (f"subsection Transfer\n  set Shape functions = {shape}\n"
             f"  set Velocity transfer = {transfer}\n"
+            f"  set Volumetric averaging = {averaging}\n"
             f"  set Update scheme = {scheme}\nend\n"
             f"subsection Time\n  set CFL number = {cfl}\nend\n"
             f"set Output directory = {outdir}\n"
@@ -190,7 +195,8 @@ def run(args, sweep, value, variant, scene, cfl=0.5, stats=10):
     os.makedirs(outdir, exist_ok=True)
     prm = os.path.join(outdir, "scene.prm")
     with open(prm, "w") as f:
-        f.write(scene + tail(*variant, cfl, outdir, stats))
+        f.write(scene + tail(*variant[:3], cfl, outdir, stats,
+                             variant[3] if len(variant) > 3 else "none"))
     start = time.time()
     proc = subprocess.run([args.scarp, prm], capture_output=True, text=True)
     row = {"sweep": sweep, "value": value, "variant": vname(variant),
@@ -223,10 +229,11 @@ def run(args, sweep, value, variant, scene, cfl=0.5, stats=10):
     return row
 
 
-def jobs_for(sweeps):
+def jobs_for(sweeps, fbar=False):
     jobs = []
+    extra = FBAR_VARIANTS if fbar else []
     if "cfl" in sweeps:
-        for v in ALL_VARIANTS:
+        for v in ALL_VARIANTS + extra:
             for c in (0.5, 0.9, 1.0, 1.1, 1.3, 1.6, 2.0):
                 jobs.append(("cfl", c, v, bar_scene(), c, 10))
     if "cfl_nocross" in sweeps:
@@ -235,14 +242,14 @@ def jobs_for(sweeps):
                 jobs.append(("cfl_nocross", c, v, bar_scene(v0=0.001), c,
                              10))
     if "stiffness" in sweeps:
-        for v in FEW_VARIANTS:
+        for v in FEW_VARIANTS + extra:
             for s in (1e-3, 1e-2, 1e-1, 1, 1e2, 1e4, 1e6):
                 jobs.append(("stiffness", s, v,
                              column_scene(E=743.0 * s,
                                           scale_time=1 / math.sqrt(s)),
                              0.5, 100))
     if "poisson" in sweeps:
-        for v in FEW_VARIANTS:
+        for v in FEW_VARIANTS + extra:
             for nu in (0.3, 0.45, 0.49, 0.495, 0.499):
                 jobs.append(("poisson", nu, v,
                              column_scene(nu=nu, h=0.05), 0.5, 500))
@@ -300,8 +307,7 @@ def report(args, rows):
                   " |")
         md.append("|---" * (len(values) + 1) + "|")
         for v in sorted({r["variant"] for r in srows},
-                        key=lambda x: [vname(a) for a in ALL_VARIANTS]
-                        .index(x)):
+                        key=ORDER.index):
             cells = []
             for val in values:
                 r = next((r for r in srows if r["variant"] == v and
@@ -350,7 +356,7 @@ def report(args, rows):
 def cfl_map(args, plt, crows, sweep):
     if not crows:
         return
-    variants = [vname(v) for v in ALL_VARIANTS]
+    variants = [v for v in ORDER if any(r["variant"] == v for r in crows)]
     cfls = sorted({r["cfl"] for r in crows})
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for i, v in enumerate(variants):
@@ -381,10 +387,13 @@ def main():
     ap.add_argument("--sweeps",
                     default="cfl,stiffness,poisson,speed,tiny_mass,residual")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--fbar", action="store_true",
+                    help="add the F-bar variants to the cfl, stiffness and "
+                         "poisson sweeps")
     args = ap.parse_args()
     args.scarp = os.path.abspath(args.scarp)
     os.makedirs(args.out, exist_ok=True)
-    jobs = jobs_for(args.sweeps.split(","))
+    jobs = jobs_for(args.sweeps.split(","), args.fbar)
     rows = []
     t0 = time.time()
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
