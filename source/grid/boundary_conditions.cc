@@ -325,11 +325,13 @@ namespace scarp
       // contact by its own direction and records it in node.contact; the
       // start velocity and the MUSL remap (consistent contact) take the
       // normal velocity off the faces in contact only, without friction;
-      // legacy contact treats every pass like the grid update.
+      // the start of the FLIP update (consistent contact) leaves friction
+      // faces alone; legacy contact treats every pass like the grid update.
       enum class Pass
       {
         update,
         start,
+        flip_start,
         remap
       };
       const auto constrain =
@@ -349,6 +351,8 @@ namespace scarp
                       break;
                     case BoundaryType::friction:
                       {
+                        if (pass == Pass::flip_start)
+                          break;
                         if (pass != Pass::update && !legacy_friction_contact)
                           {
                             if (node.contact & (1u << f))
@@ -413,22 +417,12 @@ namespace scarp
           // would not reach them; so they lose what the face stops.
           Tensor<1, dim> v_work = v_raw;
           constrain(node, v_work, Pass::start);
-          Tensor<1, dim> v_start = v_work;
-          if (!legacy_friction_contact && node.contact != 0)
-            {
-              v_start = v_raw;
-              for (unsigned int f = 0; f < 2 * dim; ++f)
-                if ((node.faces & (1u << f)) &&
-                    types[f] != BoundaryType::friction)
-                  {
-                    if (types[f] == BoundaryType::fixed)
-                      v_start = 0;
-                    else if (types[f] == BoundaryType::slip)
-                      v_start[f / 2] = 0;
-                  }
-              if (node.faces & prescribed_bit)
-                v_start = v_work;
-            }
+          Tensor<1, dim> v_start = v_raw;
+          constrain(node,
+                    v_start,
+                    legacy_friction_contact || (node.faces & prescribed_bit)
+                      ? Pass::start
+                      : Pass::flip_start);
           for (unsigned int d = 0; d < dim; ++d)
             (*(*start_velocity)[d])(node.dof) = v_start[d];
           const Tensor<1, dim> dv = v - v_start;
