@@ -233,6 +233,18 @@ namespace scarp
            timer.get_summary_data(TimerOutput::total_wall_time))
         phases.add(name, seconds);
       summary.add("wall_time_per_phase", phases);
+      // The parts of the MPM step (this rank's, as the phases above).
+      if (mpm)
+        {
+          const auto             &t = mpm->part_times();
+          postprocess::JsonObject parts;
+          parts.add("shape functions", t.shape_functions);
+          parts.add("P2G", t.p2g);
+          parts.add("grid update", t.grid_update);
+          parts.add("G2P", t.g2p);
+          parts.add("constitutive update", t.constitutive_update);
+          summary.add("mpm_step_parts", parts);
+        }
       // A run that ends inside a stage (interrupted, or stopped by an
       // error) still reports what that stage has measured so far: its
       // start, the end of its mass scaling, and the failure onset.

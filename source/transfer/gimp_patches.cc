@@ -2,6 +2,8 @@
 #include <scarp/transfer/gimp_patches.h>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 
 namespace scarp
 {
@@ -120,9 +122,136 @@ namespace scarp
         }
       for (unsigned int e = 0; e < p.entry_node.size(); ++e)
         p.entries.emplace_back(p.entry_node[e], p.entry_weight[e]);
+      detect_regular(p,
+                     cell->vertex(0),
+                     cell->vertex(1)[0] - cell->vertex(0)[0]);
       index = patches.size();
       patches.push_back(std::move(p));
       return patches.back();
+    }
+
+
+    namespace
+    {
+      constexpr unsigned int
+      lattice_size(const int dim)
+      {
+        return dim == 2 ? 16u : 64u;
+      }
+
+      /// At most 4 nodes per direction can be non-zero (3 for l <= h/2).
+      constexpr unsigned int
+      n_regular_max(const int dim)
+      {
+        return dim == 2 ? 16u : 64u;
+      }
+
+      /// 1D GIMP weights w[a] and derivatives g[a] of the 4 lattice nodes
+      /// X[0..3] for a domain [x - l, x + l] (l > 0) inside [X[0], X[3]]:
+      /// the same sum over the cells the domain overlaps as the general
+      /// path, one direction at a time.
+      inline void
+      weights_1d(const double (&X)[4],
+                 const double h,
+                 const double inv_h,
+                 const double x,
+                 const double l,
+                 double (&w)[4],
+                 double (&g)[4])
+      {
+        for (unsigned int a = 0; a < 4; ++a)
+          w[a] = g[a] = 0.;
+        const double inv_2l = 0.5 / l;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const double lo = std::max(x - l, X[c]);
+            const double hi = std::min(x + l, X[c + 1]);
+            if (!(hi > lo))
+              continue;
+            const double fraction = (hi - lo) * inv_2l;
+            const double xi       = (0.5 * (lo + hi) - X[c]) * inv_h;
+            w[c] += fraction * (1. - xi);
+            w[c + 1] += fraction * xi;
+            g[c] -= fraction * inv_h;
+            g[c + 1] += fraction * inv_h;
+          }
+        (void)h;
+      }
+
+      /// Whether the regular path applies to a point: every half-width is
+      /// positive (l_d = 0 only on the mesh boundary, where no patch is
+      /// regular; checked all the same).
+      template <int dim>
+      inline bool
+      all_positive(const double (&l)[dim])
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!(l[d] > 0.))
+            return false;
+        return true;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    GimpPatches<dim>::detect_regular(Patch            &p,
+                                     const Point<dim> &cell_lower,
+                                     const double      h)
+    {
+      constexpr unsigned int n_v = 1u << dim;
+      constexpr unsigned int n_l = lattice_size(dim);
+      p.regular                  = false;
+      if (p.cells.size() != (dim == 2 ? 9u : 27u) || p.n_nodes() != n_l ||
+          p.entries.size() != p.cells.size() * n_v)
+        return;
+      // Every vertex its own node with weight 1 (no hanging vertex), and
+      // every cell of the point cell's size (to round-off: the edges of
+      // one level are the same number).
+      for (const auto &[node, weight] : p.entries)
+        if (weight != 1.)
+          return;
+      for (const auto &c : p.cells)
+        if (std::abs(c.h - h) > 1e-12 * h)
+          return;
+      // The lattice: the nodes at lower + (a - 1) h, a = 0..3.
+      std::vector<unsigned int> lattice_index(p.n_nodes());
+      std::vector<bool>         taken(n_l, false);
+      for (unsigned int j = 0; j < p.n_nodes(); ++j)
+        {
+          unsigned int index = 0, stride = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double t =
+                (p.node_positions[j][d] - cell_lower[d]) / h + 1.;
+              const long a = std::lround(t);
+              if (a < 0 || a > 3 || std::abs(t - a) > 1e-8)
+                return;
+              p.lattice[d][a] = p.node_positions[j][d];
+              index += a * stride;
+              stride *= 4;
+            }
+          if (taken[index])
+            return;
+          taken[index]     = true;
+          lattice_index[j] = index;
+        }
+      // Nodes in lattice order, so that the lattice index is the node.
+      const auto permute = [&](auto &values) {
+        auto old = values;
+        for (unsigned int j = 0; j < lattice_index.size(); ++j)
+          values[lattice_index[j]] = old[j];
+      };
+      permute(p.node_dofs);
+      permute(p.node_positions);
+      permute(p.node_local);
+      for (auto &node : p.entry_node)
+        node = lattice_index[node];
+      for (auto &entry : p.entries)
+        entry.first = lattice_index[entry.first];
+      p.lattice_h     = h;
+      p.lattice_inv_h = 1. / h;
+      p.regular       = true;
     }
 
 
@@ -133,6 +262,172 @@ namespace scarp
                                const double (&l)[dim],
                                std::vector<double>         &value,
                                std::vector<Tensor<1, dim>> &gradient)
+    {
+      if (!patch.regular || !all_positive<dim>(l))
+        {
+          evaluate_general(patch, x, l, value, gradient);
+          return;
+        }
+      value.assign(patch.n_nodes(), 0.);
+      gradient.assign(patch.n_nodes(), Tensor<1, dim>());
+      double w[dim][4], g[dim][4];
+      for (unsigned int d = 0; d < dim; ++d)
+        weights_1d(patch.lattice[d],
+                   patch.lattice_h,
+                   patch.lattice_inv_h,
+                   x[d],
+                   l[d],
+                   w[d],
+                   g[d]);
+      for (unsigned int i = 0; i < lattice_size(dim); ++i)
+        {
+          unsigned int a[dim], k = i;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              a[d] = k % 4;
+              k /= 4;
+            }
+          double v = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            v *= w[d][a[d]];
+          Tensor<1, dim> grad;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double gd = g[d][a[d]];
+              for (unsigned int e = 0; e < dim; ++e)
+                if (e != d)
+                  gd *= w[e][a[e]];
+              grad[d] = gd;
+            }
+          value[i]    = v;
+          gradient[i] = grad;
+        }
+    }
+
+
+    template <int dim>
+    void
+    GimpPatches<dim>::append_nonzero(const Patch      &patch,
+                                     const Point<dim> &x,
+                                     const double (&l)[dim],
+                                     std::vector<double>         &all_value,
+                                     std::vector<Tensor<1, dim>> &all_gradient,
+                                     std::vector<unsigned int>   &node,
+                                     std::vector<double>         &value,
+                                     std::vector<Tensor<1, dim>> &gradient)
+    {
+      if (!patch.regular || !all_positive<dim>(l))
+        {
+          evaluate_general(patch, x, l, all_value, all_gradient);
+          for (unsigned int i = 0; i < all_value.size(); ++i)
+            if (all_value[i] != 0. || all_gradient[i].norm_square() != 0.)
+              {
+                node.push_back(i);
+                value.push_back(all_value[i]);
+                gradient.push_back(all_gradient[i]);
+              }
+          return;
+        }
+      const std::size_t n0 = node.size();
+      node.resize(n0 + n_regular_max(dim));
+      value.resize(n0 + n_regular_max(dim));
+      gradient.resize(n0 + n_regular_max(dim));
+      const unsigned int n = regular_nonzero(patch.lattice,
+                                             patch.lattice_h,
+                                             patch.lattice_inv_h,
+                                             x,
+                                             l,
+                                             node.data() + n0,
+                                             value.data() + n0,
+                                             gradient.data() + n0);
+      node.resize(n0 + n);
+      value.resize(n0 + n);
+      gradient.resize(n0 + n);
+    }
+
+
+    template <int dim>
+    unsigned int
+    GimpPatches<dim>::regular_nonzero(const double (&lattice)[dim][4],
+                                      const double      h,
+                                      const double      inv_h,
+                                      const Point<dim> &x,
+                                      const double (&l)[dim],
+                                      unsigned int   *node,
+                                      double         *value,
+                                      Tensor<1, dim> *gradient)
+    {
+      // The 1D weights vanish outside a range of at most 3 nodes per
+      // direction: only the products inside it can be non-zero.
+      double       w[dim][4], g[dim][4];
+      unsigned int first[dim], last[dim];
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          weights_1d(lattice[d], h, inv_h, x[d], l[d], w[d], g[d]);
+          first[d] = 4;
+          last[d]  = 0;
+          for (unsigned int a = 0; a < 4; ++a)
+            if (w[d][a] != 0. || g[d][a] != 0.)
+              {
+                first[d] = std::min(first[d], a);
+                last[d]  = a;
+              }
+          if (first[d] > last[d])
+            return 0;
+        }
+      unsigned int n      = 0;
+      const auto   append = [&](const unsigned int(&a)[dim]) {
+        double v = 1.;
+        for (unsigned int d = 0; d < dim; ++d)
+          v *= w[d][a[d]];
+        Tensor<1, dim> grad;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            double gd = g[d][a[d]];
+            for (unsigned int e = 0; e < dim; ++e)
+              if (e != d)
+                gd *= w[e][a[e]];
+            grad[d] = gd;
+          }
+        if (v != 0. || grad.norm_square() != 0.)
+          {
+            unsigned int index = 0, stride = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                index += a[d] * stride;
+                stride *= 4;
+              }
+            node[n]     = index;
+            value[n]    = v;
+            gradient[n] = grad;
+            ++n;
+          }
+      };
+      unsigned int a[dim];
+      if constexpr (dim == 2)
+        {
+          for (a[1] = first[1]; a[1] <= last[1]; ++a[1])
+            for (a[0] = first[0]; a[0] <= last[0]; ++a[0])
+              append(a);
+        }
+      else
+        {
+          for (a[2] = first[2]; a[2] <= last[2]; ++a[2])
+            for (a[1] = first[1]; a[1] <= last[1]; ++a[1])
+              for (a[0] = first[0]; a[0] <= last[0]; ++a[0])
+                append(a);
+        }
+      return n;
+    }
+
+
+    template <int dim>
+    void
+    GimpPatches<dim>::evaluate_general(const Patch      &patch,
+                                       const Point<dim> &x,
+                                       const double (&l)[dim],
+                                       std::vector<double>         &value,
+                                       std::vector<Tensor<1, dim>> &gradient)
     {
       const unsigned int n = patch.n_nodes();
       value.assign(n, 0.);

@@ -6,6 +6,7 @@
 #include <scarp/transfer/mpm_transfer.h>
 #include <scarp/transfer/q1_shape.h>
 
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <type_traits>
@@ -16,6 +17,15 @@ namespace scarp
   {
     namespace
     {
+      using Clock = std::chrono::steady_clock;
+
+      /// Seconds since @p start.
+      inline double
+      seconds_since(const Clock::time_point &start)
+      {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+      }
+
       /// The 3x3 embedding of a dim x dim tensor (plane strain: zz = 1).
       template <int dim>
       Tensor<2, 3>
@@ -174,40 +184,88 @@ namespace scarp
       // All sweeps of a step evaluate the shape functions at the points'
       // positions of the step's start (the reference locations change only
       // in the sort after the step): evaluate once, keep the non-zero ones.
-      shape_begin.clear();
-      shape_node.clear();
-      shape_value.clear();
-      shape_gradient.clear();
-      shape_begin.push_back(0);
+      // Room for every entry (a patch node of the point's cell, at most
+      // 3^dim on a regular patch), written in place: no growth checks in
+      // the loop. The arrays only grow; shape_begin says what is valid.
+      std::size_t bound = 0;
+      for (const OccupiedCell &occupied : occupied_cells)
+        bound += std::size_t(occupied.point_end - occupied.point_begin) *
+                 (occupied.regular ? Utilities::pow(4, dim) : occupied.n_nodes);
+      if (shape_node.size() < bound)
+        {
+          shape_node.resize(bound);
+          shape_value.resize(bound);
+          shape_gradient.resize(bound);
+        }
+      shape_begin.resize(point_handle.size() + 1);
+      shape_begin[0]                        = 0;
+      unsigned int                n_entries = 0;
       const auto                 &pool = particle_handler.get_property_pool();
       std::vector<double>         value;
       std::vector<Tensor<1, dim>> gradient;
+      unsigned int                k = 0;
       for (const OccupiedCell &occupied : occupied_cells)
         {
           const double      h  = occupied.h;
           const Point<dim> &x0 = occupied.x0;
-          for (unsigned int k = occupied.point_begin; k < occupied.point_end;
-               ++k)
+          for (unsigned int q = occupied.point_begin; q < occupied.point_end;
+               ++q, ++k)
             {
-              const double *p  = point_properties[k];
-              const auto    xi = pool.get_reference_location(point_handle[k]);
-              shape_at(occupied.patch,
-                       xi,
-                       x0 + h * xi,
-                       h,
-                       p[layout.reference_volume],
-                       value,
-                       gradient);
-              for (unsigned int i = 0; i < value.size(); ++i)
-                if (value[i] != 0. || gradient[i].norm_square() != 0.)
-                  {
-                    shape_node.push_back(i);
-                    shape_value.push_back(value[i]);
-                    shape_gradient.push_back(gradient[i]);
-                  }
-              shape_begin.push_back(shape_node.size());
+              const double *p    = point_properties[q];
+              const auto    xi   = pool.get_reference_location(point_handle[q]);
+              const Point<dim> x = x0 + h * xi;
+              if (occupied.patch)
+                {
+                  double l[dim];
+                  gimp_half_width<dim>(
+                    p[layout.reference_volume], h, x, grid.domain(), l);
+                  bool positive = true;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    positive = positive && l[d] > 0.;
+                  if (occupied.regular && positive)
+                    n_entries += GimpPatches<dim>::regular_nonzero(
+                      occupied.lattice,
+                      h,
+                      1. / h,
+                      x,
+                      l,
+                      shape_node.data() + n_entries,
+                      shape_value.data() + n_entries,
+                      shape_gradient.data() + n_entries);
+                  else
+                    {
+                      GimpPatches<dim>::evaluate_general(
+                        *occupied.patch, x, l, value, gradient);
+                      n_entries += keep_nonzero(value, gradient, n_entries);
+                    }
+                }
+              else
+                {
+                  shape_at(nullptr, xi, x, h, 0., value, gradient);
+                  n_entries += keep_nonzero(value, gradient, n_entries);
+                }
+              shape_begin[k + 1] = n_entries;
             }
         }
+    }
+
+
+    template <int dim>
+    unsigned int
+    MpmTransfer<dim>::keep_nonzero(const std::vector<double>         &value,
+                                   const std::vector<Tensor<1, dim>> &gradient,
+                                   const unsigned int                 at)
+    {
+      unsigned int n = 0;
+      for (unsigned int i = 0; i < value.size(); ++i)
+        if (value[i] != 0. || gradient[i].norm_square() != 0.)
+          {
+            shape_node[at + n]     = i;
+            shape_value[at + n]    = value[i];
+            shape_gradient[at + n] = gradient[i];
+            ++n;
+          }
+      return n;
     }
 
 
@@ -510,7 +568,10 @@ namespace scarp
     void
     MpmTransfer<dim>::remap_momentum(StepReport &report)
     {
+      auto start = Clock::now();
       particles_to_grid(Tensor<1, dim>(), /*momentum_only=*/true);
+      times.p2g += seconds_since(start);
+      start                      = Clock::now();
       const unsigned int n_owned = mass.locally_owned_size();
       for (unsigned int k = 0; k < n_owned; ++k)
         {
@@ -532,6 +593,7 @@ namespace scarp
           grid.constraints().distribute(velocity_remapped[d]);
           velocity_remapped[d].update_ghost_values();
         }
+      times.grid_update += seconds_since(start);
     }
 
 
@@ -652,8 +714,34 @@ namespace scarp
                 v_old[i][d]    = velocity_old[d].local_element(local_ptr[i]);
                 v_stress[i][d] = stress_velocity[d].local_element(local_ptr[i]);
               }
-          for (auto &b : batches)
-            b.clear();
+          // The constitutive updates of consecutive cells of one material
+          // go together, in the order of the cells (so the points' order
+          // of the bookings below and of the non-local step is that of
+          // cell-by-cell updates); a cell of several materials is updated
+          // on its own, material by material.
+          int cell_material = -1;
+          if (update_stress)
+            {
+              for (unsigned int q = occupied.point_begin;
+                   q < occupied.point_end;
+                   ++q)
+                {
+                  const int m =
+                    static_cast<int>(point_properties[q][layout.material_id]);
+                  if (cell_material == -1)
+                    cell_material = m;
+                  else if (m != cell_material)
+                    {
+                      cell_material = -2; // several
+                      break;
+                    }
+                }
+              if (n_pending > 0 &&
+                  (cell_material != pending_material || n_pending >= 256))
+                update_pending(dt, inelastic, report, damage_points, gravity);
+              pending_material = cell_material;
+              n_pending += occupied.point_end - occupied.point_begin;
+            }
           // F-bar: the increments of all points of the cell first, then
           // their common volume change (transfer/f_bar.h).
           if (update_stress && f_bar)
@@ -832,84 +920,105 @@ namespace scarp
                 }
             }
 
-          if (!update_stress)
+          if (update_stress && cell_material == -2)
+            update_pending(dt, inelastic, report, damage_points, gravity);
+        }
+      if (update_stress && n_pending > 0)
+        update_pending(dt, inelastic, report, damage_points, gravity);
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::update_pending(
+      const double                        dt,
+      const materials::InelasticSwitches &inelastic,
+      StepReport                         &report,
+      DamagePoints<dim>                  *damage_points,
+      const Tensor<1, dim>               &gravity)
+    {
+      auto &batches = material_scratch;
+      for (unsigned int mat = 0; mat < batches.size(); ++mat)
+        {
+          MaterialScratch &b = batches[mat];
+          if (b.F.empty())
             continue;
-          for (unsigned int mat = 0; mat < batches.size(); ++mat)
+          const materials::Material &material = *materials[mat];
+          b.stored_energy.resize(b.F.size());
+          materials::MaterialBatch batch;
+          batch.n             = b.F.size();
+          batch.dt            = dt;
+          batch.delta_F       = b.delta_F.data();
+          batch.F             = b.F.data();
+          batch.state         = b.state.data();
+          batch.stress        = b.stress.data();
+          batch.stored_energy = b.stored_energy.data();
+          batch.inelastic     = inelastic;
+          if (material.has_damage())
             {
-              MaterialScratch &b = batches[mat];
-              if (b.F.empty())
-                continue;
-              const materials::Material &material = *materials[mat];
-              b.stored_energy.resize(b.F.size());
-              materials::MaterialBatch batch;
-              batch.n             = b.F.size();
-              batch.dt            = dt;
-              batch.delta_F       = b.delta_F.data();
-              batch.F             = b.F.data();
-              batch.state         = b.state.data();
-              batch.stress        = b.stress.data();
-              batch.stored_energy = b.stored_energy.data();
-              batch.inelastic     = inelastic;
-              if (material.has_damage())
+              b.driver.resize(b.F.size());
+              batch.damage_driver = b.driver.data();
+            }
+          try
+            {
+              const auto start = Clock::now();
+              material.update(batch);
+              times.constitutive_update += seconds_since(start);
+            }
+          catch (...)
+            {
+              // A failed constitutive update (e.g. no convergence on a
+              // garbage state) is reported like a non-finite stress:
+              // the run then stops on every rank with the message.
+              report.n_not_finite += batch.n;
+              for (auto &s : b.stress)
+                s = SymmetricTensor<2, 3>();
+              if (!report.has_offender && !b.position.empty())
                 {
-                  b.driver.resize(b.F.size());
-                  batch.damage_driver = b.driver.data();
+                  report.has_offender = true;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    report.offender[d] = b.position[0][d];
                 }
-              try
+            }
+          for (unsigned int k = 0; k < batch.n; ++k)
+            {
+              double                      *p     = b.properties[k];
+              const SymmetricTensor<2, 3> &sigma = b.stress[k];
+              layout.set_stress(p, layout.stress, sigma);
+              const double J  = determinant(b.F[k]);
+              const double V0 = p[layout.reference_volume];
+              // Second half of the trapezoidal stress power.
+              report.internal_work +=
+                0.5 * V0 * J * scalar_product(sigma, b.strain_increment[k]);
+              report.stored_energy += V0 * b.stored_energy[k];
+              if (!std::isfinite(sigma.norm()))
                 {
-                  material.update(batch);
-                }
-              catch (...)
-                {
-                  // A failed constitutive update (e.g. no convergence on a
-                  // garbage state) is reported like a non-finite stress:
-                  // the run then stops on every rank with the message.
-                  report.n_not_finite += batch.n;
-                  for (auto &s : b.stress)
-                    s = SymmetricTensor<2, 3>();
-                  if (!report.has_offender && !b.position.empty())
+                  report.n_not_finite += 1;
+                  if (!report.has_offender)
                     {
                       report.has_offender = true;
                       for (unsigned int d = 0; d < dim; ++d)
-                        report.offender[d] = b.position[0][d];
+                        report.offender[d] = b.position[k][d];
                     }
                 }
-              for (unsigned int k = 0; k < batch.n; ++k)
+              add_point_measures(p, b.position[k], gravity, report);
+              if (damage_points && material.has_damage())
                 {
-                  double                      *p     = b.properties[k];
-                  const SymmetricTensor<2, 3> &sigma = b.stress[k];
-                  layout.set_stress(p, layout.stress, sigma);
-                  const double J  = determinant(b.F[k]);
-                  const double V0 = p[layout.reference_volume];
-                  // Second half of the trapezoidal stress power.
-                  report.internal_work +=
-                    0.5 * V0 * J * scalar_product(sigma, b.strain_increment[k]);
-                  report.stored_energy += V0 * b.stored_energy[k];
-                  if (!std::isfinite(sigma.norm()))
-                    {
-                      report.n_not_finite += 1;
-                      if (!report.has_offender)
-                        {
-                          report.has_offender = true;
-                          for (unsigned int d = 0; d < dim; ++d)
-                            report.offender[d] = b.position[k][d];
-                        }
-                    }
-                  add_point_measures(p, b.position[k], gravity, report);
-                  if (damage_points && material.has_damage())
-                    {
-                      const double *state = p + layout.state;
-                      damage_points->position.push_back(b.position[k]);
-                      damage_points->volume.push_back(V0 * J);
-                      damage_points->driver.push_back(b.driver[k]);
-                      damage_points->receiver.push_back(
-                        inelastic.damage && material.damage_can_change(state));
-                      damage_points->id.push_back(b.id[k]);
-                      damage_points->properties.push_back(p);
-                    }
+                  const double *state = p + layout.state;
+                  damage_points->position.push_back(b.position[k]);
+                  damage_points->volume.push_back(V0 * J);
+                  damage_points->driver.push_back(b.driver[k]);
+                  damage_points->receiver.push_back(
+                    inelastic.damage && material.damage_can_change(state));
+                  damage_points->id.push_back(b.id[k]);
+                  damage_points->properties.push_back(p);
                 }
             }
         }
+      for (auto &b : batches)
+        b.clear();
+      n_pending        = 0;
+      pending_material = -1;
     }
 
 
@@ -959,6 +1068,7 @@ namespace scarp
             occupied.x0          = cell->vertex(0);
             occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
             occupied.patch       = nullptr;
+            occupied.regular     = false;
             occupied.node_begin  = 0;
             occupied.n_nodes     = 0;
             occupied.point_begin = point_handle.size();
@@ -982,7 +1092,11 @@ namespace scarp
         {
           for (unsigned int c = 0; c < occupied_cells.size(); ++c)
             {
-              occupied_cells[c].patch      = previous_cells[c].patch;
+              occupied_cells[c].patch   = previous_cells[c].patch;
+              occupied_cells[c].regular = previous_cells[c].regular;
+              std::copy(&previous_cells[c].lattice[0][0],
+                        &previous_cells[c].lattice[0][0] + 4 * dim,
+                        &occupied_cells[c].lattice[0][0]);
               occupied_cells[c].node_begin = previous_cells[c].node_begin;
               occupied_cells[c].n_nodes    = previous_cells[c].n_nodes;
             }
@@ -1001,6 +1115,15 @@ namespace scarp
             {
               const auto &patch = patches.patch(occupied.cell);
               occupied.patch    = &patch;
+              // A regular patch's lattice is its cell's (the same numbers:
+              // the point cell's vertices are lattice nodes 1 and 2).
+              occupied.regular =
+                patch.regular &&
+                std::abs(patch.lattice_h - occupied.h) <= 1e-12 * occupied.h;
+              if (occupied.regular)
+                std::copy(&patch.lattice[0][0],
+                          &patch.lattice[0][0] + 4 * dim,
+                          &occupied.lattice[0][0]);
               node_local.insert(node_local.end(),
                                 patch.node_local.begin(),
                                 patch.node_local.end());
@@ -1044,32 +1167,41 @@ namespace scarp
       gravity_for_empty_nodes = gravity;
       if (damage_points)
         damage_points->clear();
+      auto start = Clock::now();
       find_occupied_cells();
       compute_shapes();
+      times.shape_functions += seconds_since(start);
+      start = Clock::now();
       particles_to_grid(gravity, false);
+      times.p2g += seconds_since(start);
+      start = Clock::now();
       solve_grid(dt, damping, report);
-      if (parameters.scheme == UpdateScheme::usl)
+      times.grid_update += seconds_since(start);
+      // G2P: its time less that of the constitutive updates it makes.
+      const auto g2p = [&](const bool                     kinematics,
+                           const bool                     stress,
+                           const std::array<Vector, dim> &stress_velocity,
+                           DamagePoints<dim>             *points) {
+        const double constitutive = times.constitutive_update;
+        const auto   g2p_start    = Clock::now();
         grid_to_particles(dt,
-                          true,
-                          true,
+                          kinematics,
+                          stress,
                           inelastic,
-                          velocity_new,
+                          stress_velocity,
                           report,
-                          damage_points,
+                          points,
                           gravity);
+        times.g2p +=
+          seconds_since(g2p_start) - (times.constitutive_update - constitutive);
+      };
+      if (parameters.scheme == UpdateScheme::usl)
+        g2p(true, true, velocity_new, damage_points);
       else
         {
-          grid_to_particles(
-            dt, true, false, inelastic, velocity_new, report, nullptr, gravity);
+          g2p(true, false, velocity_new, nullptr);
           remap_momentum(report);
-          grid_to_particles(dt,
-                            false,
-                            true,
-                            inelastic,
-                            velocity_remapped,
-                            report,
-                            damage_points,
-                            gravity);
+          g2p(false, true, velocity_remapped, damage_points);
         }
       return report;
     }

@@ -73,6 +73,7 @@ def pvd(name):
 
 
 skipped = {"wall_time", "particle_steps_per_second", "wall_time_per_phase",
+           "mpm_step_parts",
            "mpi_ranks", "nonlocal_lists", "load_rebalances"}
 
 

@@ -4,7 +4,8 @@
 # other's. With <Check interval> = 20 the 2-rank run must repartition at
 # least once and still give the physics of the 1-rank run: the same energies
 # and momenta in statistics.csv (to 1e-9 relative: repartitioning only
-# reorders the sums) and no point lost.
+# reorders the sums) and no point lost. It also checks the timing of the
+# parts of the MPM step in summary.json.
 # Arguments (from scarp_add_script_test): scarp, source dir, run dir,
 # mpiexec, mpi flags.
 set -euo pipefail
@@ -84,5 +85,24 @@ check(one[-1]["material_points"] == two[-1]["material_points"] == one[0]["materi
       "no point lost")
 x_end = float(one[-1]["momentum_x"]) / float(one[-1]["mass"])
 check(abs(x_end - 4) < 1e-6 * 4, f"block still slides at 4 m/s (mean {x_end:.9f})")
+# The parts of the MPM step (summary.json, mpm_step_parts) are timed inside
+# its phase, one after the other: each >= 0, and on each run their sum is
+# at most the phase's wall time, and on one rank covers most of it (what is
+# left out is the reduction of the step report and the timer calls). Time
+# counted twice breaks the upper bound, most of the step untimed the lower.
+for name in ("one", "two"):
+    s = json.load(open(f"{name}/summary.json"))
+    parts = s.get("mpm_step_parts", {})
+    step = s["wall_time_per_phase"]["MPM step"]
+    total = sum(parts.values())
+    check(sorted(parts) == sorted(["shape functions", "P2G", "grid update",
+                                   "G2P", "constitutive update"])
+          and min(parts.values()) >= 0,
+          f"{name}: the five parts of the MPM step, none negative")
+    # On 2 ranks the rank that writes the summary may hold few points and
+    # wait for the other in the reduction: only the upper bound there.
+    lower = 0.5 * step if name == "one" else 0.0
+    check(lower <= total <= step * 1.0001,
+          f"{name}: parts sum to {total:.4f} s of the MPM step's {step:.4f} s")
 sys.exit(1 if fails else 0)
 PY

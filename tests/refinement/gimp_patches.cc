@@ -10,6 +10,9 @@
 //   hanging-node constrained Q1 space holds the linear functions, and the
 //   mean of a linear function over the point's domain is its value at the
 //   centre);
+// - regular: the regular path of a patch (products of 1D weights) equals
+//   the general sum over its cells to round-off, on uniform and refined
+//   meshes, and only the patches without hanging nodes take it;
 // - split: refining cells splits their points into 2^dim children with mass,
 //   momentum, angular momentum and kinetic energy unchanged to 1e-12, ids
 //   unique over all ranks.
@@ -233,6 +236,100 @@ namespace
     check(linear_grad < 1e-12, "gradients of linear fields exact to 1e-12");
   }
 
+  /// The regular path (products of 1D weights, the 3^dim cells around
+  /// the point's cell all of its size, no hanging vertex) against the
+  /// general sum over the patch cells, on a uniform and an adaptive mesh.
+  template <int dim>
+  void
+  regular(const unsigned int levels)
+  {
+    Setup<dim>                  s(levels);
+    std::vector<double>         value, general_value, scratch_v;
+    std::vector<Tensor<1, dim>> gradient, general_gradient, scratch_g;
+    std::vector<unsigned int>   nz_node;
+    std::vector<double>         nz_value;
+    std::vector<Tensor<1, dim>> nz_gradient;
+    double                      worst = 0, worst_nz = 0;
+    unsigned int n_regular = 0, n_irregular = 0, n_hanging_regular = 0,
+                 n_entry_mismatch = 0;
+    for_random_points<dim>(
+      s,
+      [&](const auto       &patch,
+          const Point<dim> &x,
+          const double(&l)[dim],
+          const auto &) {
+        const bool hanging =
+          patch.entry_node.size() > patch.cell_size.size() * (1u << dim);
+        if (!patch.regular)
+          {
+            ++n_irregular;
+            return;
+          }
+        ++n_regular;
+        n_hanging_regular += hanging;
+        GimpPatches<dim>::evaluate(patch, x, l, value, gradient);
+        GimpPatches<dim>::evaluate_general(
+          patch, x, l, general_value, general_gradient);
+        for (unsigned int j = 0; j < patch.n_nodes(); ++j)
+          worst = std::max({worst,
+                            std::abs(value[j] - general_value[j]),
+                            (gradient[j] - general_gradient[j]).norm()});
+        nz_node.clear();
+        nz_value.clear();
+        nz_gradient.clear();
+        GimpPatches<dim>::append_nonzero(
+          patch, x, l, scratch_v, scratch_g, nz_node, nz_value, nz_gradient);
+        // The same non-zero entries as the general sums (l = 0 takes the
+        // general path itself: compared all the same).
+        std::set<unsigned int> general_nz,
+          regular_nz(nz_node.begin(), nz_node.end());
+        for (unsigned int j = 0; j < patch.n_nodes(); ++j)
+          if (general_value[j] != 0. || general_gradient[j].norm() != 0.)
+            general_nz.insert(j);
+        n_entry_mismatch += general_nz != regular_nz;
+        for (unsigned int e = 0; e < nz_node.size(); ++e)
+          worst_nz =
+            std::max({worst_nz,
+                      std::abs(nz_value[e] - general_value[nz_node[e]]),
+                      (nz_gradient[e] - general_gradient[nz_node[e]]).norm()});
+      });
+    worst             = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    worst_nz          = Utilities::MPI::max(worst_nz, MPI_COMM_WORLD);
+    n_regular         = Utilities::MPI::sum(n_regular, MPI_COMM_WORLD);
+    n_irregular       = Utilities::MPI::sum(n_irregular, MPI_COMM_WORLD);
+    n_hanging_regular = Utilities::MPI::sum(n_hanging_regular, MPI_COMM_WORLD);
+    n_entry_mismatch  = Utilities::MPI::sum(n_entry_mismatch, MPI_COMM_WORLD);
+    out() << "  " << dim << "D, " << levels
+          << " refinement level(s): " << n_regular
+          << " points on regular patches, " << n_irregular
+          << " on others; max |regular - general| = " << worst
+          << " (non-zero entries: " << worst_nz << ", " << n_entry_mismatch
+          << " sets differ)" << std::endl;
+    const std::string where =
+      std::to_string(dim) + "D, " + std::to_string(levels) + " level(s): ";
+    // The mesh is 8^dim cells of edge 1 (refined in a band): on the
+    // uniform mesh the cells off the boundary layer have regular patches,
+    // 6^dim of 8^dim, and those of the boundary layer do not; 3 points
+    // per cell.
+    if (levels == 0)
+      check(n_regular == 3 * std::pow(6, dim) &&
+              n_irregular == 3 * (std::pow(8, dim) - std::pow(6, dim)),
+            where + "exactly the interior cells have regular patches");
+    else
+      check(n_regular > 0 && n_irregular > 0,
+            where + "regular and other patches on a refined mesh");
+    check(n_hanging_regular == 0,
+          where + "no patch with hanging nodes is regular");
+    // The two paths are the same sums of products of numbers in [0, 1]
+    // (weights) and [0, 1/h] (gradients, h >= 1/4) in another order:
+    // round-off of a few 1e-16; 1e-14 leaves room, and a wrong 1D weight
+    // (a missed cell, a wrong sign) shows at 1e-2 or more.
+    check(worst < 1e-14,
+          where + "regular weights equal the general ones to 1e-14");
+    check(worst_nz < 1e-14 && n_entry_mismatch == 0,
+          where + "the non-zero entries of both paths are the same");
+  }
+
   template <int dim>
   void
   split()
@@ -385,6 +482,13 @@ main(int argc, char **argv)
                      [] {
                        adaptive<2>();
                        adaptive<3>();
+                     }},
+                    {"regular",
+                     [] {
+                       regular<2>(0);
+                       regular<2>(2);
+                       regular<3>(0);
+                       regular<3>(1);
                      }},
                     {"split", [] {
                        split<2>();

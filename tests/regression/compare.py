@@ -48,7 +48,8 @@ import math
 import sys
 
 # Machine- and partition-dependent summary entries: never compared.
-VOLATILE = {"wall_time", "wall_time_per_phase", "particle_steps_per_second",
+VOLATILE = {"wall_time", "wall_time_per_phase", "mpm_step_parts",
+            "particle_steps_per_second",
             "mpi_ranks", "load_rebalances", "nonlocal_lists"}
 # Columns of statistics.csv that are counts: compared exactly.
 EXACT_COLUMNS = {"step", "material_points"}

@@ -86,6 +86,17 @@ namespace scarp
         std::vector<Cell>                            cells;
         std::vector<std::pair<unsigned int, double>> entries;
 
+        /// A regular patch: the 3^dim cells around the point's cell, all of
+        /// its size, none with a hanging vertex. Its nodes form a lattice of
+        /// 4 per direction, and N_j is a tensor product of 1D hats, so the
+        /// weights are products of 1D GIMP weights (evaluate_regular()).
+        bool regular = false;
+        /// Regular patches: the lattice coordinates per direction, the
+        /// edge and its inverse. Their nodes are in lattice order: node
+        /// a_0 + 4 a_1 (+ 16 a_2) is the one at lattice[d][a_d].
+        double lattice[dim][4];
+        double lattice_h = 0, lattice_inv_h = 0;
+
         unsigned int
         n_nodes() const
         {
@@ -114,6 +125,48 @@ namespace scarp
                std::vector<double>         &value,
                std::vector<Tensor<1, dim>> &gradient);
 
+      /// The non-zero entries (weight or gradient) of a point at @p x with
+      /// half-widths @p l > 0 on a regular patch with the lattice
+      /// coordinates @p lattice and edge @p h: written to @p node (lattice
+      /// index = patch node), @p value, @p gradient, which have room for
+      /// 4^dim entries; returns their number (at most 3^dim). Products of 1D
+      /// weights, equal to the general sum over the patch cells up to
+      /// round-off.
+      static unsigned int
+      regular_nonzero(const double (&lattice)[dim][4],
+                      const double      h,
+                      const double      inv_h,
+                      const Point<dim> &x,
+                      const double (&l)[dim],
+                      unsigned int   *node,
+                      double         *value,
+                      Tensor<1, dim> *gradient);
+
+      /// The same as evaluate() for the entries that are not zero
+      /// (weight or gradient), appended to @p node (patch node), @p value,
+      /// @p gradient; on a regular patch as products of 1D weights (equal
+      /// to the general sum over the patch cells up to round-off), else
+      /// from evaluate() with the scratch arrays @p all_value,
+      /// @p all_gradient.
+      static void
+      append_nonzero(const Patch      &patch,
+                     const Point<dim> &x,
+                     const double (&l)[dim],
+                     std::vector<double>         &all_value,
+                     std::vector<Tensor<1, dim>> &all_gradient,
+                     std::vector<unsigned int>   &node,
+                     std::vector<double>         &value,
+                     std::vector<Tensor<1, dim>> &gradient);
+
+      /// The general sum over the patch cells, also on a regular patch (to
+      /// test the regular path against it).
+      static void
+      evaluate_general(const Patch      &patch,
+                       const Point<dim> &x,
+                       const double (&l)[dim],
+                       std::vector<double>         &value,
+                       std::vector<Tensor<1, dim>> &gradient);
+
       /// Number of patches built since the last reinit (for statistics).
       unsigned int
       n_built() const
@@ -122,6 +175,11 @@ namespace scarp
       }
 
     private:
+      /// Mark @p p regular if it is, and set its lattice (the point cell's
+      /// lower vertex @p cell_lower and edge @p h).
+      static void
+      detect_regular(Patch &p, const Point<dim> &cell_lower, const double h);
+
       const DoFHandler<dim>             *dofs        = nullptr;
       const AffineConstraints<double>   *constraints = nullptr;
       const Utilities::MPI::Partitioner *partitioner = nullptr;

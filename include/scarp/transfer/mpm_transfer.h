@@ -150,6 +150,25 @@ namespace scarp
         return velocity_new;
       }
 
+      /**
+       * @brief Wall time of the parts of the steps so far [s], on this
+       * rank: the shape functions (occupied cells and the points' weights),
+       * P2G (with the momentum P2G of the MUSL remap), the grid update (the
+       * nodal solve, boundary conditions, constraints, ghost exchange, the
+       * remapped velocities), G2P (velocities, positions, deformation and
+       * the bookkeeping of the points) and the constitutive updates.
+       */
+      struct PartTimes
+      {
+        double shape_functions = 0, p2g = 0, grid_update = 0, g2p = 0,
+               constitutive_update = 0;
+      };
+      const PartTimes &
+      part_times() const
+      {
+        return times;
+      }
+
       /// After a step in which no point left its cell (StepReport::
       /// n_changed_cell == 0 on every rank): set the reference locations
       /// from the new positions, which is all the particle handler's sort
@@ -185,6 +204,13 @@ namespace scarp
       /// Fill the shape cache for the points of the occupied cells.
       void
       compute_shapes();
+      /// Write the non-zero entries of @p value, @p gradient (indexed by
+      /// the cell's nodes) to the shape cache from entry @p at on; returns
+      /// their number.
+      unsigned int
+      keep_nonzero(const std::vector<double>         &value,
+                   const std::vector<Tensor<1, dim>> &gradient,
+                   const unsigned int                 at);
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
       void
@@ -194,6 +220,8 @@ namespace scarp
                          const Point<dim>     &x,
                          const Tensor<1, dim> &gravity,
                          StepReport           &report) const;
+
+      PartTimes times;
 
       const grid::BackgroundGrid<dim>         &grid;
       Particles::ParticleHandler<dim>         &particle_handler;
@@ -223,6 +251,10 @@ namespace scarp
         /// GIMP: the cell's patch (GimpPatches keeps it in place until its
         /// next reinit); Q1: nullptr.
         const typename GimpPatches<dim>::Patch *patch;
+        /// GIMP on a regular patch: its lattice, copied here so that the
+        /// shape functions of the cell's points read no patch memory.
+        bool   regular         = false;
+        double lattice[dim][4] = {};
         /// Its nodes: entries [node_begin, node_begin + n_nodes) of
         /// node_local, node_dof, node_position. Q1: the cell's 2^dim
         /// (constrained if hanging), GIMP: the unconstrained patch nodes.
@@ -274,6 +306,19 @@ namespace scarp
         }
       };
       std::vector<MaterialScratch> material_scratch;
+      /// Points in material_scratch not yet updated, and their material if
+      /// they are of one (G2P updates the points of consecutive cells of
+      /// one material together, in the order of the cells).
+      unsigned int n_pending        = 0;
+      int          pending_material = -1;
+      /// Update the materials of the points in material_scratch (in the
+      /// order of the materials) and book them in @p report.
+      void
+      update_pending(const double                        dt,
+                     const materials::InelasticSwitches &inelastic,
+                     StepReport                         &report,
+                     DamagePoints<dim>                  *damage_points,
+                     const Tensor<1, dim>               &gravity);
       /// F-bar scratch of one cell: its points' velocity gradients,
       /// deformation increments and volumes at the start of the step.
       std::vector<Tensor<2, dim>> cell_L, cell_delta_F;
