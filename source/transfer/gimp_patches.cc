@@ -374,6 +374,11 @@ namespace scarp
               }
           if (first[d] > last[d])
             return 0;
+          // l <= h/2 keeps the domain within 2 cells per direction: 3
+          // nodes at most (the caller has room for 3^dim entries).
+          if (last[d] - first[d] > 2)
+            throw ScarpError("GIMP: a point domain reaches more than 2 "
+                             "cells in one direction (l > h/2).");
         }
       unsigned int n      = 0;
       const auto   append = [&](const unsigned int(&a)[dim]) {

@@ -190,7 +190,7 @@ namespace scarp
       std::size_t bound = 0;
       for (const OccupiedCell &occupied : occupied_cells)
         bound += std::size_t(occupied.point_end - occupied.point_begin) *
-                 (occupied.regular ? Utilities::pow(4, dim) : occupied.n_nodes);
+                 (occupied.regular ? Utilities::pow(3, dim) : occupied.n_nodes);
       if (shape_node.size() < bound)
         {
           shape_node.resize(bound);

@@ -129,7 +129,8 @@ namespace scarp
       /// half-widths @p l > 0 on a regular patch with the lattice
       /// coordinates @p lattice and edge @p h: written to @p node (lattice
       /// index = patch node), @p value, @p gradient, which have room for
-      /// 4^dim entries; returns their number (at most 3^dim). Products of 1D
+      /// 3^dim entries (l <= h/2 reaches at most 3 nodes per direction);
+      /// returns their number. Products of 1D
       /// weights, equal to the general sum over the patch cells up to
       /// round-off.
       static unsigned int
