@@ -268,39 +268,19 @@ namespace scarp
           evaluate_general(patch, x, l, value, gradient);
           return;
         }
+      // The non-zero entries of the regular path, the others zero.
       value.assign(patch.n_nodes(), 0.);
       gradient.assign(patch.n_nodes(), Tensor<1, dim>());
-      double w[dim][4], g[dim][4];
-      for (unsigned int d = 0; d < dim; ++d)
-        weights_1d(patch.lattice[d],
-                   patch.lattice_h,
-                   patch.lattice_inv_h,
-                   x[d],
-                   l[d],
-                   w[d],
-                   g[d]);
-      for (unsigned int i = 0; i < lattice_size(dim); ++i)
+      constexpr unsigned int n_max = dim == 2 ? 9 : 27;
+      unsigned int           node[n_max];
+      double                 v[n_max];
+      Tensor<1, dim>         g[n_max];
+      const unsigned int     n = regular_nonzero(
+        patch.lattice, patch.lattice_h, patch.lattice_inv_h, x, l, node, v, g);
+      for (unsigned int k = 0; k < n; ++k)
         {
-          unsigned int a[dim], k = i;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              a[d] = k % 4;
-              k /= 4;
-            }
-          double v = 1.;
-          for (unsigned int d = 0; d < dim; ++d)
-            v *= w[d][a[d]];
-          Tensor<1, dim> grad;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              double gd = g[d][a[d]];
-              for (unsigned int e = 0; e < dim; ++e)
-                if (e != d)
-                  gd *= w[e][a[e]];
-              grad[d] = gd;
-            }
-          value[i]    = v;
-          gradient[i] = grad;
+          value[node[k]]    = v[k];
+          gradient[node[k]] = g[k];
         }
     }
 
