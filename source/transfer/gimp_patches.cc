@@ -139,20 +139,12 @@ namespace scarp
         return dim == 2 ? 16u : 64u;
       }
 
-      /// At most 4 nodes per direction can be non-zero (3 for l <= h/2).
-      constexpr unsigned int
-      n_regular_max(const int dim)
-      {
-        return dim == 2 ? 16u : 64u;
-      }
-
       /// 1D GIMP weights w[a] and derivatives g[a] of the 4 lattice nodes
       /// X[0..3] for a domain [x - l, x + l] (l > 0) inside [X[0], X[3]]:
       /// the same sum over the cells the domain overlaps as the general
       /// path, one direction at a time.
       inline void
       weights_1d(const double (&X)[4],
-                 const double h,
                  const double inv_h,
                  const double x,
                  const double l,
@@ -175,7 +167,6 @@ namespace scarp
             g[c] -= fraction * inv_h;
             g[c + 1] += fraction * inv_h;
           }
-        (void)h;
       }
 
       /// Whether the regular path applies to a point: every half-width is
@@ -275,8 +266,8 @@ namespace scarp
       unsigned int           node[n_max];
       double                 v[n_max];
       Tensor<1, dim>         g[n_max];
-      const unsigned int     n = regular_nonzero(
-        patch.lattice, patch.lattice_h, patch.lattice_inv_h, x, l, node, v, g);
+      const unsigned int     n =
+        regular_nonzero(patch.lattice, patch.lattice_inv_h, x, l, node, v, g);
       for (unsigned int k = 0; k < n; ++k)
         {
           value[node[k]]    = v[k];
@@ -286,50 +277,8 @@ namespace scarp
 
 
     template <int dim>
-    void
-    GimpPatches<dim>::append_nonzero(const Patch      &patch,
-                                     const Point<dim> &x,
-                                     const double (&l)[dim],
-                                     std::vector<double>         &all_value,
-                                     std::vector<Tensor<1, dim>> &all_gradient,
-                                     std::vector<unsigned int>   &node,
-                                     std::vector<double>         &value,
-                                     std::vector<Tensor<1, dim>> &gradient)
-    {
-      if (!patch.regular || !all_positive<dim>(l))
-        {
-          evaluate_general(patch, x, l, all_value, all_gradient);
-          for (unsigned int i = 0; i < all_value.size(); ++i)
-            if (all_value[i] != 0. || all_gradient[i].norm_square() != 0.)
-              {
-                node.push_back(i);
-                value.push_back(all_value[i]);
-                gradient.push_back(all_gradient[i]);
-              }
-          return;
-        }
-      const std::size_t n0 = node.size();
-      node.resize(n0 + n_regular_max(dim));
-      value.resize(n0 + n_regular_max(dim));
-      gradient.resize(n0 + n_regular_max(dim));
-      const unsigned int n = regular_nonzero(patch.lattice,
-                                             patch.lattice_h,
-                                             patch.lattice_inv_h,
-                                             x,
-                                             l,
-                                             node.data() + n0,
-                                             value.data() + n0,
-                                             gradient.data() + n0);
-      node.resize(n0 + n);
-      value.resize(n0 + n);
-      gradient.resize(n0 + n);
-    }
-
-
-    template <int dim>
     unsigned int
     GimpPatches<dim>::regular_nonzero(const double (&lattice)[dim][4],
-                                      const double      h,
                                       const double      inv_h,
                                       const Point<dim> &x,
                                       const double (&l)[dim],
@@ -343,7 +292,7 @@ namespace scarp
       unsigned int first[dim], last[dim];
       for (unsigned int d = 0; d < dim; ++d)
         {
-          weights_1d(lattice[d], h, inv_h, x[d], l[d], w[d], g[d]);
+          weights_1d(lattice[d], inv_h, x[d], l[d], w[d], g[d]);
           first[d] = 4;
           last[d]  = 0;
           for (unsigned int a = 0; a < 4; ++a)

@@ -74,6 +74,29 @@ namespace scarp
                                     box.upper_bound(d) - x[d]}));
       }
 
+      using Vector = LinearAlgebra::distributed::Vector<double>;
+
+      /// compress(add) of several vectors with one round of messages: all
+      /// sends start before the first wait (each on its own channel, < 100).
+      void
+      compress_add(const std::vector<Vector *> &vectors)
+      {
+        for (unsigned int c = 0; c < vectors.size(); ++c)
+          vectors[c]->compress_start(c, VectorOperation::add);
+        for (Vector *v : vectors)
+          v->compress_finish(VectorOperation::add);
+      }
+
+      /// update_ghost_values() of several vectors with one round of
+      /// messages.
+      void
+      update_ghosts(const std::vector<Vector *> &vectors)
+      {
+        for (unsigned int c = 0; c < vectors.size(); ++c)
+          vectors[c]->update_ghost_values_start(c);
+        for (Vector *v : vectors)
+          v->update_ghost_values_finish();
+      }
     } // namespace
 
 
@@ -115,6 +138,73 @@ namespace scarp
       occupied_cells.clear();
       node_arrays_valid = false;
       compute_node_cutoffs();
+      setup_constraints();
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::setup_constraints()
+    {
+      constraint_local.clear();
+      constraint_begin.assign(1, 0);
+      constraint_entries.clear();
+      const Utilities::MPI::Partitioner &partitioner = *mass.get_partitioner();
+      for (const auto &line : grid.constraints().get_lines())
+        {
+          if (!partitioner.in_local_range(line.index))
+            continue;
+          // Hanging-node constraints are homogeneous; close() resolved
+          // chains, so every source is an unconstrained node.
+          AssertThrow(line.inhomogeneity == 0.,
+                      ExcInternalError("an inhomogeneous grid constraint"));
+          constraint_local.push_back(partitioner.global_to_local(line.index));
+          for (const auto &entry : line.entries)
+            {
+              AssertThrow(partitioner.in_local_range(entry.first) ||
+                            partitioner.is_ghost_entry(entry.first),
+                          ExcInternalError(
+                            "a hanging node whose source is not a ghost"));
+              constraint_entries.emplace_back(
+                partitioner.global_to_local(entry.first), entry.second);
+            }
+          constraint_begin.push_back(constraint_entries.size());
+        }
+      const MPI_Comm     comm = grid.dof_handler().get_communicator();
+      const unsigned int mine = constraint_local.empty() ? 0 : 1;
+      any_constraints         = Utilities::MPI::max(mine, comm) > 0;
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::distribute_and_update_ghosts(
+      const std::vector<Vector *> &vectors,
+      const std::vector<Vector *> &unconstrained)
+    {
+      std::vector<Vector *> all = vectors;
+      all.insert(all.end(), unconstrained.begin(), unconstrained.end());
+      if (!any_constraints)
+        {
+          update_ghosts(all);
+          return;
+        }
+      // The sources first (ghost entries), then the owned hanging nodes in
+      // the order and arithmetic of AffineConstraints::distribute() (the
+      // same numbers to the bit), then the ghosts of those.
+      update_ghosts(vectors);
+      for (Vector *v : vectors)
+        for (unsigned int c = 0; c < constraint_local.size(); ++c)
+          {
+            double value = 0.;
+            for (unsigned int e = constraint_begin[c];
+                 e < constraint_begin[c + 1];
+                 ++e)
+              value += v->local_element(constraint_entries[e].first) *
+                       constraint_entries[e].second;
+            v->local_element(constraint_local[c]) = value;
+          }
+      update_ghosts(all);
     }
 
 
@@ -225,7 +315,6 @@ namespace scarp
                   if (occupied.regular && positive)
                     n_entries += GimpPatches<dim>::regular_nonzero(
                       occupied.lattice,
-                      h,
                       1. / h,
                       x,
                       l,
@@ -458,15 +547,16 @@ namespace scarp
                 distribute(local_body[d], body_force_nodal[d]);
             }
         }
-      mass.compress(VectorOperation::add);
+      std::vector<Vector *> sums = {&mass};
       for (unsigned int d = 0; d < dim; ++d)
         {
-          momentum[d].compress(VectorOperation::add);
+          sums.push_back(&momentum[d]);
           if (!momentum_only)
-            force[d].compress(VectorOperation::add);
+            sums.push_back(&force[d]);
           if (body_force && !momentum_only)
-            body_force_nodal[d].compress(VectorOperation::add);
+            sums.push_back(&body_force_nodal[d]);
         }
+      compress_add(sums);
     }
 
 
@@ -553,13 +643,13 @@ namespace scarp
       report.damping_dissipation -= damping_work;
       report.body_force_work += body_work;
 
+      std::vector<Vector *> velocities;
       for (unsigned int d = 0; d < dim; ++d)
-        for (Vector *v : {&velocity_old[d], &velocity_new[d]})
-          {
-            grid.constraints().distribute(*v);
-            v->update_ghost_values();
-          }
-      mass.update_ghost_values();
+        {
+          velocities.push_back(&velocity_old[d]);
+          velocities.push_back(&velocity_new[d]);
+        }
+      distribute_and_update_ghosts(velocities, {&mass});
       return damping_work;
     }
 
@@ -587,12 +677,11 @@ namespace scarp
       // counted in the solve already.
       (void)report;
       grid.boundary_conditions().apply(mass, ptr);
-      mass.update_ghost_values();
+      // The P2G of the remap left the mass without its ghosts.
+      std::vector<Vector *> remapped;
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          grid.constraints().distribute(velocity_remapped[d]);
-          velocity_remapped[d].update_ghost_values();
-        }
+        remapped.push_back(&velocity_remapped[d]);
+      distribute_and_update_ghosts(remapped, {&mass});
       times.grid_update += seconds_since(start);
     }
 

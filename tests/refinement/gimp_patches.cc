@@ -274,13 +274,45 @@ namespace
           worst = std::max({worst,
                             std::abs(value[j] - general_value[j]),
                             (gradient[j] - general_gradient[j]).norm()});
+        // What MpmTransfer keeps of a regular patch: regular_nonzero()
+        // where every l_d > 0, else the non-zero entries of the general
+        // sum (compared all the same).
         nz_node.clear();
         nz_value.clear();
         nz_gradient.clear();
-        GimpPatches<dim>::append_nonzero(
-          patch, x, l, scratch_v, scratch_g, nz_node, nz_value, nz_gradient);
-        // The same non-zero entries as the general sums (l = 0 takes the
-        // general path itself: compared all the same).
+        bool positive = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          positive = positive && l[d] > 0.;
+        if (positive)
+          {
+            constexpr unsigned int n_max = dim == 2 ? 9 : 27;
+            nz_node.resize(n_max);
+            nz_value.resize(n_max);
+            nz_gradient.resize(n_max);
+            nz_node.resize(
+              GimpPatches<dim>::regular_nonzero(patch.lattice,
+                                                patch.lattice_inv_h,
+                                                x,
+                                                l,
+                                                nz_node.data(),
+                                                nz_value.data(),
+                                                nz_gradient.data()));
+            nz_value.resize(nz_node.size());
+            nz_gradient.resize(nz_node.size());
+          }
+        else
+          {
+            GimpPatches<dim>::evaluate_general(
+              patch, x, l, scratch_v, scratch_g);
+            for (unsigned int j = 0; j < scratch_v.size(); ++j)
+              if (scratch_v[j] != 0. || scratch_g[j].norm_square() != 0.)
+                {
+                  nz_node.push_back(j);
+                  nz_value.push_back(scratch_v[j]);
+                  nz_gradient.push_back(scratch_g[j]);
+                }
+          }
+        // The same non-zero entries as the general sums.
         std::set<unsigned int> general_nz,
           regular_nz(nz_node.begin(), nz_node.end());
         for (unsigned int j = 0; j < patch.n_nodes(); ++j)

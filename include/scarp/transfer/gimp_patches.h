@@ -127,7 +127,8 @@ namespace scarp
 
       /// The non-zero entries (weight or gradient) of a point at @p x with
       /// half-widths @p l > 0 on a regular patch with the lattice
-      /// coordinates @p lattice and edge @p h: written to @p node (lattice
+      /// coordinates @p lattice and inverse edge @p inv_h: written to
+      /// @p node (lattice
       /// index = patch node), @p value, @p gradient, which have room for
       /// 3^dim entries (l <= h/2 reaches at most 3 nodes per direction);
       /// returns their number. Products of 1D
@@ -135,29 +136,12 @@ namespace scarp
       /// round-off.
       static unsigned int
       regular_nonzero(const double (&lattice)[dim][4],
-                      const double      h,
                       const double      inv_h,
                       const Point<dim> &x,
                       const double (&l)[dim],
                       unsigned int   *node,
                       double         *value,
                       Tensor<1, dim> *gradient);
-
-      /// The same as evaluate() for the entries that are not zero
-      /// (weight or gradient), appended to @p node (patch node), @p value,
-      /// @p gradient; on a regular patch as products of 1D weights (equal
-      /// to the general sum over the patch cells up to round-off), else
-      /// from evaluate() with the scratch arrays @p all_value,
-      /// @p all_gradient.
-      static void
-      append_nonzero(const Patch      &patch,
-                     const Point<dim> &x,
-                     const double (&l)[dim],
-                     std::vector<double>         &all_value,
-                     std::vector<Tensor<1, dim>> &all_gradient,
-                     std::vector<unsigned int>   &node,
-                     std::vector<double>         &value,
-                     std::vector<Tensor<1, dim>> &gradient);
 
       /// The general sum over the patch cells, also on a regular patch (to
       /// test the regular path against it).

@@ -342,6 +342,32 @@ namespace scarp
       /// GIMP patches of the occupied cells (built as cells fill).
       GimpPatches<dim> patches;
 
+      /**
+       * The hanging-node constraints of the locally owned nodes, in the
+       * local storage of the grid vectors: node constraint_local[c] takes
+       * sum_j weight_j v(source_j) over constraint_entries
+       * [constraint_begin[c], constraint_begin[c + 1]). The sources of an
+       * owned hanging node are vertices of a locally owned or ghost cell,
+       * so ghost entries hold them. With this, the constraints of several
+       * vectors take two batched ghost exchanges instead of the
+       * AffineConstraints::distribute() of each vector (which builds a
+       * ghosted copy, with a new partitioner, and compresses it back).
+       */
+      std::vector<unsigned int>                    constraint_local;
+      std::vector<unsigned int>                    constraint_begin;
+      std::vector<std::pair<unsigned int, double>> constraint_entries;
+      /// Whether any rank owns a constrained node (the ghost exchanges are
+      /// collective: all ranks take the same branch).
+      bool any_constraints = false;
+      void
+      setup_constraints();
+      /// Apply the hanging-node constraints to @p vectors (owned values
+      /// set) and update their ghost entries, and those of
+      /// @p unconstrained with the same messages.
+      void
+      distribute_and_update_ghosts(const std::vector<Vector *> &vectors,
+                                   const std::vector<Vector *> &unconstrained);
+
       Vector                  mass;
       std::array<Vector, dim> momentum, force, velocity_old, velocity_new,
         velocity_remapped;
