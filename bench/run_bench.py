@@ -2,7 +2,7 @@
 """Run benchmark scenes of scarp and print their speed (doc/performance.md).
 
     bench/run_bench.py [--scarp [LABEL=]build/scarp ...] [--ranks 1[,2]]
-                       [--repeat 3] [--suite joss|column|column3d|all]
+                       [--repeat 3] [--suite joss|flow|column|column3d|all]
                        [--sizes 25,50,100] [--sizes3d 8,12] [--shapes Q1,GIMP]
                        [--csv bench.csv] [--work DIR] [SCENE.prm ...]
 
@@ -37,7 +37,9 @@ Benchmarks print figures; nothing is asserted. On a machine shared with
 other jobs, repeat and take medians (--repeat).
 
 Suites: "joss" is bench/scenes/joss_bay_L1_short.prm (the refined Joss Bay
-scene, GIMP, chalk with damage, cut short); "column" is the 2D elastic
+scene, GIMP, chalk with damage, cut short); "flow" is
+bench/scenes/granular_collapse_flow.prm (a granular column collapse, GIMP,
+cut short while it flows: points change cells every step); "column" is the 2D elastic
 column under gravity (Q1 and GIMP, FLIP/MUSL, 2x2 points per cell) at
 three sizes (--sizes; 250 adds 1e6 points), generated into --work with a
 fixed number of about 200 steps; "column3d" the same column in 3D
@@ -229,7 +231,8 @@ def main():
                     "efficiency of each against the first is printed)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--suite",
-                    choices=["joss", "column", "column3d", "all", "none"],
+                    choices=["joss", "flow", "column", "column3d", "all",
+                             "none"],
                     default=None)
     ap.add_argument("--sizes", default="25,50,100",
                     help="column cells across (2D: 16 n^2 points; "
@@ -253,6 +256,9 @@ def main():
     if suite in ("joss", "all"):
         scenes.append(("joss_bay_L1_short",
                        "bench/scenes/joss_bay_L1_short.prm"))
+    if suite in ("flow", "all"):
+        scenes.append(("granular_collapse_flow",
+                       "bench/scenes/granular_collapse_flow.prm"))
     if suite in ("column", "all"):
         for shape in shapes:
             for n_x in (int(n) for n in args.sizes.split(",")):

@@ -128,6 +128,7 @@ namespace scarp
       if (checkpoint.resuming())
         {
           vtu->restore_records(restored_records);
+          first_step = loop.step;
           pcout << "Resumed from " << checkpoint.loaded_directory()
                 << " at step " << loop.step << ", t = " << loop.time << " s"
                 << std::endl;
@@ -237,8 +238,11 @@ namespace scarp
         }
       timer.print_wall_time_statistics(communicator);
       pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
-            << loop.step << " steps, "
-            << last_report.n_points * loop.step /
+            << loop.step << " steps";
+      if (first_step > 0)
+        pcout << " (" << loop.step - first_step << " in this run)";
+      pcout << ", "
+            << last_report.n_points * (loop.step - first_step) /
                  std::max(wall_clock.wall_time(), 1e-9)
             << " particle-steps/s. Output in " << output_directory << "/"
             << std::endl;

@@ -206,7 +206,8 @@ namespace scarp
       summary.add("cells",
                   double(grid.triangulation().n_global_active_cells()));
       summary.add("wall_time", wall_clock.wall_time());
-      const double point_steps = last_report.n_points * loop.step;
+      const double point_steps =
+        last_report.n_points * double(loop.step - first_step);
       summary.add("particle_steps_per_second",
                   point_steps / std::max(wall_clock.wall_time(), 1e-9));
       postprocess::JsonObject energies;

@@ -341,7 +341,7 @@ namespace scarp
       {
         TimerOutput::Scope scope(timer, "sort particles");
         if (report.n_changed_cell > 0)
-          particles.sort_particles_into_subdomains_and_cells();
+          mpm->sort_points(communicator);
         else
           mpm->update_reference_locations();
       }

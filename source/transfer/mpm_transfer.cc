@@ -1136,6 +1136,21 @@ namespace scarp
 
     template <int dim>
     void
+    MpmTransfer<dim>::sort_points(const MPI_Comm communicator)
+    {
+      occupied_points.clear();
+      for (const OccupiedCell &occupied : occupied_cells)
+        occupied_points.push_back(
+          {occupied.cell, occupied.point_begin, occupied.point_end});
+      point_mover.sort(particle_handler,
+                       occupied_points,
+                       point_handle,
+                       communicator);
+    }
+
+
+    template <int dim>
+    void
     MpmTransfer<dim>::find_occupied_cells()
     {
       // The occupied cells, in order, with their points.

@@ -332,6 +332,9 @@ namespace scarp
       ConditionalOStream  pcout;
       mutable TimerOutput timer;
       Timer               wall_clock;
+      /// The step this run started from (a resumed run: the checkpoint's),
+      /// for the speed of this run.
+      unsigned int first_step = 0;
 
       grid::BackgroundGrid<dim>                         grid;
       Particles::ParticleHandler<dim>                   particles;

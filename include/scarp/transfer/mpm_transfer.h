@@ -7,6 +7,7 @@
 
 #include <scarp/grid/background_grid.h>
 #include <scarp/materials/material.h>
+#include <scarp/particles/point_mover.h>
 #include <scarp/particles/property_layout.h>
 #include <scarp/transfer/gimp_patches.h>
 #include <scarp/transfer/step_report.h>
@@ -176,7 +177,18 @@ namespace scarp
       void
       update_reference_locations();
 
+      /// After a step in which points left their cells: sort them into
+      /// their new cells (particles::PointMover on the occupied cells of the
+      /// step, or the particle handler's sort if a point leaves the rank or
+      /// the mesh). Collective.
+      void
+      sort_points(const MPI_Comm communicator);
+
     private:
+      particles::PointMover<dim> point_mover;
+      std::vector<typename particles::PointMover<dim>::CellPoints>
+        occupied_points;
+
       void
       particles_to_grid(const Tensor<1, dim> &gravity,
                         const bool            momentum_only);

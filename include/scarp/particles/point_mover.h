@@ -1,0 +1,127 @@
+#ifndef scarp_particles_point_mover_h
+#define scarp_particles_point_mover_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <vector>
+
+namespace scarp
+{
+  namespace particles
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Sorts the points that left their cells into their new cells
+     * when they all stay on this rank, without the particle handler's full
+     * sort; otherwise calls it.
+     *
+     * ParticleHandler::sort_particles_into_subdomains_and_cells() maps every
+     * point to its cell's unit cell (a virtual call each), searches the
+     * cells around the closest vertex for those that left, and then
+     * rearranges the property memory of all points
+     * (PropertyPool::sort_memory_slots): about a tenth of a refined Joss Bay
+     * run. Here the reference locations are computed in place, the few
+     * points that left find their cell by walking through face neighbours
+     * (into the child on their side where the neighbour is finer), and only
+     * they are moved: inserted into their new cells and removed from the
+     * old ones in the order the full sort uses, so every cell ends up with
+     * the same points in the same order and with the same reference
+     * locations, bit for bit (tests/particles/point_mover.cc). Only the
+     * property slots of the moved points differ.
+     *
+     * Meshes of axis-aligned boxes only (MappingCartesian).
+     */
+    template <int dim>
+    class PointMover
+    {
+    public:
+      /// @p compaction_fraction: when the points moved here since the last
+      /// full sort exceed this fraction of a rank's points, the full sort
+      /// runs again to put the property slots back in order.
+      explicit PointMover(const double compaction_fraction = 0.1)
+        : compaction_fraction(compaction_fraction)
+      {
+      }
+
+      /// A cell with points: its points are the entries [begin, end) of a
+      /// list of property pool handles (ParticleAccessor::
+      /// get_local_index()), in the cell's order.
+      struct CellPoints
+      {
+        typename Triangulation<dim>::active_cell_iterator cell;
+        unsigned int                                      begin, end;
+      };
+
+      /**
+       * Sort the points of @p particles into their cells. @p cells are this
+       * rank's active cells that hold points, in the order of the active
+       * cell iteration (the particle handler's sort works through them in
+       * that order), with their points' @p handles (a caller that keeps
+       * them, as MpmTransfer does, spares the walk through the handler's
+       * cells). If every point stays in the locally owned cells and in the
+       * mesh on every rank, the points are moved here; otherwise, or when
+       * the points moved here since the last full sort exceed the
+       * compaction fraction of the points of a rank (their property slots
+       * scatter, which slows the sweeps over the points), the particle
+       * handler's sort runs on every rank. Collective. Returns true if the
+       * points were moved here.
+       */
+      bool
+      sort(Particles::ParticleHandler<dim> &particles,
+           const std::vector<CellPoints>   &cells,
+           const std::vector<unsigned int> &handles,
+           const MPI_Comm                   communicator);
+
+      /// The same, with the cells and handles gathered from @p particles
+      /// on @p triangulation (its mesh).
+      bool
+      sort(Particles::ParticleHandler<dim> &particles,
+           const Triangulation<dim>        &triangulation,
+           const MPI_Comm                   communicator);
+
+      /// The points moved by the last sort() on this rank (0 if the full
+      /// sort ran).
+      std::size_t
+      n_moved() const
+      {
+        return n_last_moved;
+      }
+
+    private:
+      /// Set the reference locations of the points that stay and find the
+      /// cells of those that left; false if one leaves this rank's cells or
+      /// the mesh (then nothing is to be moved here).
+      bool
+      find_new_cells(Particles::ParticleHandler<dim> &particles,
+                     const std::vector<CellPoints>   &cells,
+                     const std::vector<unsigned int> &handles);
+
+      /// Move the points find_new_cells() found.
+      void
+      move_points(Particles::ParticleHandler<dim> &particles);
+
+      /// A point leaving its cell.
+      struct Move
+      {
+        typename Particles::ParticleHandler<dim>::particle_iterator point;
+        typename Triangulation<dim>::active_cell_iterator           cell;
+        Point<dim>                                                  reference;
+      };
+      std::vector<Move> moves;
+      /// The properties of one moving point (the pool may grow while it is
+      /// copied).
+      std::vector<double> buffer;
+      double              compaction_fraction;
+      std::size_t         n_last_moved = 0;
+      /// Points moved here since the last full sort.
+      std::size_t n_moved_since_full_sort = 0;
+      /// The cells and handles of sort(particles, communicator).
+      std::vector<CellPoints>   own_cells;
+      std::vector<unsigned int> own_handles;
+    };
+  } // namespace particles
+} // namespace scarp
+
+#endif

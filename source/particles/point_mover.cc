@@ -1,0 +1,245 @@
+// PointMover: the sort of the points into their new cells when they all
+// stay on this rank (see the class documentation).
+
+#include <deal.II/base/array_view.h>
+
+#include <scarp/particles/point_mover.h>
+
+#include <iterator>
+
+namespace scarp
+{
+  namespace particles
+  {
+    namespace
+    {
+      /// The lowest vertex of an axis-aligned cell and its extents, as
+      /// MappingCartesian reads them (vertex 1, 2, 4 for x, y, z).
+      template <int dim>
+      void
+      cell_frame(const typename Triangulation<dim>::cell_iterator &cell,
+                 Point<dim>                                       &start,
+                 Tensor<1, dim>                                   &extent)
+      {
+        start = cell->vertex(0);
+        for (unsigned int d = 0; d < dim; ++d)
+          extent[d] = cell->vertex(1u << d)[d] - start[d];
+      }
+
+      /// The reference location of @p x, in the same arithmetic as
+      /// MappingCartesian::transform_real_to_unit_cell(), so that a point
+      /// gets the same bits whichever sort places it.
+      template <int dim>
+      inline Point<dim>
+      unit_point(const Point<dim>     &x,
+                 const Point<dim>     &start,
+                 const Tensor<1, dim> &extent)
+      {
+        Point<dim> xi = x;
+        xi -= start;
+        for (unsigned int d = 0; d < dim; ++d)
+          xi[d] /= extent[d];
+        return xi;
+      }
+
+      /// The face through which @p xi leaves the unit cell, or
+      /// numbers::invalid_unsigned_int if it is inside (closed, as
+      /// GeometryInfo::is_inside_unit_cell()).
+      template <int dim>
+      unsigned int
+      exit_face(const Point<dim> &xi)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            if (xi[d] < 0.)
+              return 2 * d;
+            if (xi[d] > 1.)
+              return 2 * d + 1;
+          }
+        return numbers::invalid_unsigned_int;
+      }
+
+      /**
+       * The active cell holding @p x, walked to from @p start_cell through
+       * face neighbours (into the child on the side of @p x where the
+       * neighbour is finer), possibly through ghost cells. False if the
+       * walk leaves the mesh, meets an artificial cell, ends in a cell that
+       * is not locally owned, or does not end within a few cells (a point
+       * moves less than a cell per step): the full sort then decides.
+       */
+      template <int dim>
+      bool
+      walk_to_cell(
+        const typename Triangulation<dim>::active_cell_iterator &start_cell,
+        const Point<dim>                                        &x,
+        typename Triangulation<dim>::active_cell_iterator       &found,
+        Point<dim>                                              &xi)
+      {
+        typename Triangulation<dim>::cell_iterator cell = start_cell;
+        Point<dim>                                 start;
+        Tensor<1, dim>                             extent;
+        for (unsigned int hop = 0; hop < 4 * dim; ++hop)
+          {
+            cell_frame<dim>(cell, start, extent);
+            xi                      = unit_point(x, start, extent);
+            const unsigned int face = exit_face(xi);
+            if (face == numbers::invalid_unsigned_int)
+              {
+                if (!cell->is_locally_owned())
+                  return false;
+                found = cell;
+                return true;
+              }
+            if (cell->at_boundary(face))
+              return false;
+            cell = cell->neighbor(face);
+            while (cell->has_children())
+              {
+                // Children are numbered lexicographically: bit d set for
+                // the upper half in direction d.
+                const Point<dim> centre = cell->center();
+                unsigned int     child  = 0;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (x[d] > centre[d])
+                    child |= 1u << d;
+                cell = cell->child(child);
+              }
+            // Ghost cells are walked through (a corner crossing may pass
+            // one); artificial cells are not known well enough.
+            if (cell->is_artificial())
+              return false;
+          }
+        return false;
+      }
+    } // namespace
+
+
+    template <int dim>
+    bool
+    PointMover<dim>::find_new_cells(Particles::ParticleHandler<dim> &particles,
+                                    const std::vector<CellPoints>   &cells,
+                                    const std::vector<unsigned int> &handles)
+    {
+      moves.clear();
+      auto          &pool  = particles.get_property_pool();
+      bool           local = true;
+      Point<dim>     start;
+      Tensor<1, dim> extent;
+      // In the order of the particle handler's sort: active cells, then
+      // the points of a cell in its order.
+      for (const CellPoints &c : cells)
+        {
+          cell_frame<dim>(c.cell, start, extent);
+          for (unsigned int q = c.begin; q < c.end; ++q)
+            {
+              const unsigned int handle = handles[q];
+              const Point<dim>  &x      = pool.get_location(handle);
+              const Point<dim>   xi     = unit_point(x, start, extent);
+              if (exit_face(xi) == numbers::invalid_unsigned_int)
+                {
+                  pool.set_reference_location(handle, xi);
+                  continue;
+                }
+              if (!local)
+                continue;
+              // The handler's iterator, needed for the few that move only.
+              Move move;
+              move.point = particles.particles_in_cell(c.cell).begin();
+              std::advance(move.point, q - c.begin);
+              local = walk_to_cell<dim>(c.cell, x, move.cell, move.reference);
+              if (local)
+                moves.push_back(move);
+            }
+        }
+      if (!local)
+        moves.clear();
+      return local;
+    }
+
+
+    template <int dim>
+    void
+    PointMover<dim>::move_points(Particles::ParticleHandler<dim> &particles)
+    {
+      using Iterator =
+        typename Particles::ParticleHandler<dim>::particle_iterator;
+      std::vector<Iterator> leaving;
+      leaving.reserve(moves.size());
+      for (const Move &move : moves)
+        {
+          // Copies first: inserting may grow the pool's storage.
+          const Point<dim>            x          = move.point->get_location();
+          const types::particle_index id         = move.point->get_id();
+          const auto                  properties = move.point->get_properties();
+          buffer.assign(properties.begin(), properties.end());
+          particles.insert_particle(
+            x, move.reference, id, move.cell, make_array_view(buffer));
+          leaving.push_back(move.point);
+        }
+      // The same list in the same order as in the particle handler's sort,
+      // so that the points left in a cell are reordered alike (and it
+      // recounts the points, collectively).
+      particles.remove_particles(leaving);
+      n_last_moved = moves.size();
+      moves.clear();
+    }
+
+
+    template <int dim>
+    bool
+    PointMover<dim>::sort(Particles::ParticleHandler<dim> &particles,
+                          const std::vector<CellPoints>   &cells,
+                          const std::vector<unsigned int> &handles,
+                          const MPI_Comm                   communicator)
+    {
+      // 2: move here; 1: the points could move here, but their slots are
+      // to be put in order again; 0: a point leaves the rank or the mesh.
+      unsigned int verdict = find_new_cells(particles, cells, handles) ? 2 : 0;
+      if (verdict == 2 &&
+          double(n_moved_since_full_sort + moves.size()) >
+            compaction_fraction * particles.n_locally_owned_particles())
+        verdict = 1;
+      if (Utilities::MPI::min(verdict, communicator) == 2)
+        {
+          move_points(particles);
+          n_moved_since_full_sort += n_last_moved;
+          return true;
+        }
+      moves.clear();
+      n_last_moved            = 0;
+      n_moved_since_full_sort = 0;
+      particles.sort_particles_into_subdomains_and_cells();
+      return false;
+    }
+
+
+    template <int dim>
+    bool
+    PointMover<dim>::sort(Particles::ParticleHandler<dim> &particles,
+                          const Triangulation<dim>        &triangulation,
+                          const MPI_Comm                   communicator)
+    {
+      own_cells.clear();
+      own_handles.clear();
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto range = particles.particles_in_cell(cell);
+            if (range.begin() == range.end())
+              continue;
+            CellPoints c;
+            c.cell  = cell;
+            c.begin = own_handles.size();
+            for (const auto &point : range)
+              own_handles.push_back(point.get_local_index());
+            c.end = own_handles.size();
+            own_cells.push_back(c);
+          }
+      return sort(particles, own_cells, own_handles, communicator);
+    }
+
+
+    template class PointMover<2>;
+    template class PointMover<3>;
+  } // namespace particles
+} // namespace scarp

@@ -1,0 +1,218 @@
+// The sort of the points into their new cells without the particle
+// handler's full sort (particles/point_mover.h), against that sort.
+//
+// Two particle handlers hold the same points on a mesh refined twice in a
+// band (coarse-fine faces in both directions, hanging nodes), in 2D and 3D,
+// on any number of ranks. Every step moves the points of both by the same
+// pseudo-random displacements (at most 0.2, under the finest cell of
+// 0.25); one handler sorts with ParticleHandler::
+// sort_particles_into_subdomains_and_cells(), the other with PointMover.
+// After every step both must hold, cell by cell, the same points (ids) in
+// the same order, with the same reference locations and properties, bit
+// for bit: PointMover is meant to be an exact replacement, so the
+// tolerance is zero.
+//
+// Steps of three kinds:
+// - odd steps move only the points whose new place is in a locally owned
+//   cell: PointMover must then move them itself (on every rank count);
+// - even steps move every point: on one rank PointMover moves them, on
+//   several some leave their rank and the full sort must run instead;
+// - the last step pushes one point out of the mesh: the full sort runs (it
+//   drops the point) on every rank.
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <scarp/particles/point_mover.h>
+
+#include "../common/scene_runner.h"
+
+#include <cstring>
+#include <map>
+#include <random>
+
+namespace
+{
+  using namespace scarp_test;
+  using scarp::particles::PointMover;
+
+  constexpr unsigned int n_properties = 3;
+
+  /// The displacement of point @p id in step @p step: each component
+  /// uniform in [-0.2, 0.2], the same on every rank and for both handlers.
+  template <int dim>
+  Tensor<1, dim>
+  displacement(const types::particle_index id, const unsigned int step)
+  {
+    std::mt19937_64                        random(1000003 * id + step);
+    std::uniform_real_distribution<double> u(-0.2, 0.2);
+    Tensor<1, dim>                         dx;
+    for (unsigned int d = 0; d < dim; ++d)
+      dx[d] = u(random);
+    return dx;
+  }
+
+  /// The points of a rank, cell by cell in the order of the active cells:
+  /// (active cell index, id, reference location and properties as bits).
+  template <int dim>
+  std::vector<std::vector<unsigned long long>>
+  cell_contents(const parallel::distributed::Triangulation<dim> &tria,
+                const Particles::ParticleHandler<dim>           &particles)
+  {
+    std::vector<std::vector<unsigned long long>> contents;
+    const auto                                   bits = [](const double x) {
+      unsigned long long b;
+      std::memcpy(&b, &x, sizeof(b));
+      return b;
+    };
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &point : particles.particles_in_cell(cell))
+          {
+            std::vector<unsigned long long> row = {cell->active_cell_index(),
+                                                   point.get_id()};
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(bits(point.get_reference_location()[d]));
+            for (const double p : point.get_properties())
+              row.push_back(bits(p));
+            contents.push_back(row);
+          }
+    return contents;
+  }
+
+  template <int dim>
+  void
+  against_full_sort()
+  {
+    parallel::distributed::Triangulation<dim> tria(
+      MPI_COMM_WORLD, Triangulation<dim>::limit_level_difference_at_vertices);
+    const unsigned int n = dim == 2 ? 8 : 4;
+    GridGenerator::subdivided_hyper_cube(tria, n, 0., double(n));
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->center()[0] > 1.3 &&
+              cell->center()[0] < 2.7 &&
+              static_cast<unsigned int>(cell->level()) == k)
+            cell->set_refine_flag();
+        tria.execute_coarsening_and_refinement();
+      }
+    MappingCartesian<dim>           mapping;
+    Particles::ParticleHandler<dim> full(tria, mapping, n_properties);
+    Particles::ParticleHandler<dim> moved(tria, mapping, n_properties);
+    // 3 points per direction and coarse cell, ids from the lattice.
+    const unsigned int m = 3 * n;
+    for (unsigned int k = 0; k < std::pow(m, dim); ++k)
+      {
+        Point<dim>   x;
+        unsigned int rest = k;
+        for (unsigned int d = 0; d < dim; ++d, rest /= m)
+          x[d] = (rest % m + 0.5) / 3.;
+        const auto cell = GridTools::find_active_cell_around_point(tria, x);
+        if (cell.state() != IteratorState::valid || !cell->is_locally_owned())
+          continue;
+        Point<dim> xi = mapping.transform_real_to_unit_cell(cell, x);
+        const std::vector<double> p = {double(k), x[0] * x[1], -x[0]};
+        full.insert_particle(x, xi, k, cell, p);
+        moved.insert_particle(x, xi, k, cell, p);
+      }
+    full.update_cached_numbers();
+    moved.update_cached_numbers();
+    const std::string where = std::to_string(dim) + "D: ";
+
+    // Where each point's cell level goes, over all steps.
+    unsigned int n_to_finer = 0, n_to_coarser = 0, n_moved = 0;
+    unsigned int n_local_steps = 0, n_full_steps = 0;
+    bool         same = true, odd_local = true;
+    // Without the compaction by the full sort (the test moves most points
+    // every step; the runs of scarp a few in a thousand).
+    PointMover<dim>    mover(1e30);
+    const unsigned int n_steps = 12;
+    for (unsigned int step = 0; step <= n_steps; ++step)
+      {
+        std::map<types::particle_index, int> level_before;
+        for (const auto &point : full)
+          level_before[point.get_id()] = point.get_surrounding_cell()->level();
+        const types::particle_index lowest =
+          full.n_locally_owned_particles() > 0 ? full.begin()->get_id()
+                                               : numbers::invalid_dof_index;
+        for (Particles::ParticleHandler<dim> *handler : {&full, &moved})
+          for (auto &point : *handler)
+            {
+              Point<dim> x = point.get_location();
+              if (step == n_steps)
+                {
+                  // Out of the mesh: the lowest id of the rank.
+                  if (point.get_id() == lowest)
+                    x[0] = -1.;
+                }
+              else
+                {
+                  Point<dim> y = x + displacement<dim>(point.get_id(), step);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    y[d] = std::min(std::max(y[d], 1e-3), n - 1e-3);
+                  if (step % 2 == 1)
+                    {
+                      const auto cell =
+                        GridTools::find_active_cell_around_point(tria, y);
+                      if (cell.state() != IteratorState::valid ||
+                          !cell->is_locally_owned())
+                        continue;
+                    }
+                  x = y;
+                }
+              point.set_location(x);
+            }
+        full.sort_particles_into_subdomains_and_cells();
+        const bool local = mover.sort(moved, tria, MPI_COMM_WORLD);
+        n_moved += mover.n_moved();
+        (local ? n_local_steps : n_full_steps) += 1;
+        if (step % 2 == 1 && step < n_steps)
+          odd_local = odd_local && local;
+        same = same && cell_contents(tria, full) == cell_contents(tria, moved);
+        for (const auto &point : full)
+          {
+            const auto before = level_before.find(point.get_id());
+            if (before == level_before.end())
+              continue;
+            const int level = point.get_surrounding_cell()->level();
+            n_to_finer += level > before->second;
+            n_to_coarser += level < before->second;
+          }
+        if (step == n_steps)
+          check(!local, where + "a point leaving the mesh takes the full sort");
+      }
+    n_moved      = Utilities::MPI::sum(n_moved, MPI_COMM_WORLD);
+    n_to_finer   = Utilities::MPI::sum(n_to_finer, MPI_COMM_WORLD);
+    n_to_coarser = Utilities::MPI::sum(n_to_coarser, MPI_COMM_WORLD);
+    out() << "  " << where << full.n_global_particles() << " points, "
+          << n_moved << " moved by PointMover, " << n_local_steps
+          << " steps moved by it and " << n_full_steps
+          << " by the full sort on rank 0; " << n_to_finer
+          << " moves into finer cells, " << n_to_coarser << " into coarser"
+          << std::endl;
+    check(same,
+          where + "same points, order, reference locations and properties "
+                  "in every cell as the full sort, bit for bit, every step");
+    check(odd_local, where + "points staying on their rank are moved here");
+    check(n_moved > 0 && n_to_finer > 0 && n_to_coarser > 0,
+          where + "points moved into finer and coarser cells");
+    check(full.n_global_particles() == moved.n_global_particles() &&
+            full.n_global_particles() ==
+              Utilities::MPI::sum(full.n_locally_owned_particles(),
+                                  MPI_COMM_WORLD),
+          where + "the same number of points (one left the mesh)");
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  return run_cases(argc, argv, {{"against_full_sort", [] {
+                                   against_full_sort<2>();
+                                   against_full_sort<3>();
+                                 }}});
+}
