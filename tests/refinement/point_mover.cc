@@ -19,6 +19,9 @@
 //   several some leave their rank and the full sort must run instead;
 // - the last step pushes one point out of the mesh: the full sort runs (it
 //   drops the point) on every rank.
+// A third handler, sorted by a PointMover with the default compaction (the
+// full sort once the moved points exceed a tenth), must hold the same too,
+// and must have handed over to the full sort.
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/fe/mapping_cartesian.h>
@@ -103,6 +106,7 @@ namespace
     MappingCartesian<dim>           mapping;
     Particles::ParticleHandler<dim> full(tria, mapping, n_properties);
     Particles::ParticleHandler<dim> moved(tria, mapping, n_properties);
+    Particles::ParticleHandler<dim> compacted(tria, mapping, n_properties);
     // 3 points per direction and coarse cell, ids from the lattice.
     const unsigned int m = 3 * n;
     for (unsigned int k = 0; k < std::pow(m, dim); ++k)
@@ -118,9 +122,11 @@ namespace
         const std::vector<double> p = {double(k), x[0] * x[1], -x[0]};
         full.insert_particle(x, xi, k, cell, p);
         moved.insert_particle(x, xi, k, cell, p);
+        compacted.insert_particle(x, xi, k, cell, p);
       }
     full.update_cached_numbers();
     moved.update_cached_numbers();
+    compacted.update_cached_numbers();
     const std::string where = std::to_string(dim) + "D: ";
 
     // Where each point's cell level goes, over all steps.
@@ -129,8 +135,12 @@ namespace
     bool         same = true, odd_local = true;
     // Without the compaction by the full sort (the test moves most points
     // every step; the runs of scarp a few in a thousand).
-    PointMover<dim>    mover(1e30);
-    const unsigned int n_steps = 12;
+    PointMover<dim> mover(1e30);
+    // With the default compaction (a tenth of the points): the full sort
+    // takes over after a step or two here, and the points must be the same.
+    PointMover<dim>    compacting;
+    unsigned int       n_compacting_full = 0;
+    const unsigned int n_steps           = 12;
     for (unsigned int step = 0; step <= n_steps; ++step)
       {
         std::map<types::particle_index, int> level_before;
@@ -139,7 +149,8 @@ namespace
         const types::particle_index lowest =
           full.n_locally_owned_particles() > 0 ? full.begin()->get_id()
                                                : numbers::invalid_dof_index;
-        for (Particles::ParticleHandler<dim> *handler : {&full, &moved})
+        for (Particles::ParticleHandler<dim> *handler :
+             {&full, &moved, &compacted})
           for (auto &point : *handler)
             {
               Point<dim> x = point.get_location();
@@ -169,10 +180,14 @@ namespace
         full.sort_particles_into_subdomains_and_cells();
         const bool local = mover.sort(moved, tria, MPI_COMM_WORLD);
         n_moved += mover.n_moved();
+        n_compacting_full +=
+          compacting.sort(compacted, tria, MPI_COMM_WORLD) ? 0 : 1;
         (local ? n_local_steps : n_full_steps) += 1;
         if (step % 2 == 1 && step < n_steps)
           odd_local = odd_local && local;
-        same = same && cell_contents(tria, full) == cell_contents(tria, moved);
+        same = same &&
+               cell_contents(tria, full) == cell_contents(tria, moved) &&
+               cell_contents(tria, full) == cell_contents(tria, compacted);
         for (const auto &point : full)
           {
             const auto before = level_before.find(point.get_id());
@@ -196,8 +211,11 @@ namespace
           << std::endl;
     check(same,
           where + "same points, order, reference locations and properties "
-                  "in every cell as the full sort, bit for bit, every step");
+                  "in every cell as the full sort, bit for bit, every step "
+                  "(with and without the compaction)");
     check(odd_local, where + "points staying on their rank are moved here");
+    check(n_compacting_full > 1,
+          where + "the default compaction hands over to the full sort");
     check(n_moved > 0 && n_to_finer > 0 && n_to_coarser > 0,
           where + "points moved into finer and coarser cells");
     check(full.n_global_particles() == moved.n_global_particles() &&
