@@ -28,7 +28,7 @@ namespace scarp
      * they are moved: inserted into their new cells and removed from the
      * old ones in the order the full sort uses, so every cell ends up with
      * the same points in the same order and with the same reference
-     * locations, bit for bit (tests/particles/point_mover.cc). Only the
+     * locations, bit for bit (tests/refinement/point_mover.cc). Only the
      * property slots of the moved points differ.
      *
      * Meshes of axis-aligned boxes only (MappingCartesian).
