@@ -275,20 +275,52 @@ namespace scarp
       std::vector<double>                      &averages)
     {
       const std::size_t n = positions.size();
-      const bool        rebuild =
-        needs_rebuild(local_boxes, positions, is_receiver, ids);
-      if (rebuild)
-        setup_communication(local_boxes, positions, ids);
-      exchange_source_data(positions, volumes, values, is_source);
-      if (rebuild)
+      const ListAction  action =
+        list_action(local_boxes, positions, is_receiver, ids);
+      if (action == ListAction::rebuild)
         {
+          setup_communication(local_boxes,
+                              positions,
+                              ids,
+                              weight.cutoff_radius() + skin);
+          exchange_source_data(positions, volumes, values, is_source);
           build_neighbour_lists(is_receiver);
-          built_boxes     = local_boxes;
-          built_ids       = ids;
-          built_positions = positions;
-          built_receivers = is_receiver;
-          lists_valid     = true;
-          built_index_of_id.clear();
+          origin_ids          = slot_ids;
+          origin_positions    = source_positions;
+          patches_since_build = 0;
+          built_boxes         = local_boxes;
+          built_positions     = positions;
+          built_receivers     = is_receiver;
+          ++rebuild_count;
+        }
+      else if (action == ListAction::patch)
+        {
+          // Each point may be up to skin/2 from its build position now and
+          // another skin/2 the other way later: cut-off + 2 skin from our
+          // region now covers every source that can come within the cut-off
+          // of a receiver before the next rebuild.
+          const std::vector<types::particle_index> old_slot_ids = slot_ids;
+          setup_communication(local_boxes,
+                              positions,
+                              ids,
+                              weight.cutoff_radius() + 2. * skin);
+          exchange_source_data(positions, volumes, values, is_source);
+          patch_neighbour_lists(is_receiver, ids, old_slot_ids);
+          ++patches_since_build;
+          ++patch_count;
+        }
+      else
+        {
+          exchange_source_data(positions, volumes, values, is_source);
+          ++reuse_count;
+        }
+      if (action != ListAction::reuse)
+        {
+          // built_positions and built_receivers are set above.
+          for (const auto id : built_ids)
+            built_index_of_id[id] = numbers::invalid_unsigned_int;
+          built_ids   = ids;
+          lists_valid = true;
           for (std::size_t i = 0; i < ids.size(); ++i)
             {
               if (ids[i] >= built_index_of_id.size())
@@ -296,10 +328,7 @@ namespace scarp
                                          numbers::invalid_unsigned_int);
               built_index_of_id[ids[i]] = i;
             }
-          ++rebuild_count;
         }
-      else
-        ++reuse_count;
 
       averages.resize(n);
       evaluate(values, is_receiver, averages);
@@ -307,30 +336,59 @@ namespace scarp
 
 
     template <int dim>
-    bool
-    NonlocalAverager<dim>::needs_rebuild(
+    typename NonlocalAverager<dim>::ListAction
+    NonlocalAverager<dim>::list_action(
       const std::vector<BoundingBox<dim>>      &local_boxes,
       const std::vector<Point<dim>>            &positions,
       const std::vector<bool>                  &is_receiver,
       const std::vector<types::particle_index> &ids) const
     {
       const auto local_decision = [&]() {
-        if (!lists_valid || ids != built_ids || local_boxes != built_boxes)
-          return true;
-        // A new receiver has no list yet; a former one is simply skipped.
-        for (std::size_t i = 0; i < ids.size(); ++i)
-          if (is_receiver[i] && !built_receivers[i])
-            return true;
+        if (!lists_valid || local_boxes != built_boxes)
+          return ListAction::rebuild;
         // Pairs closer than the cut-off now were closer than cut-off + skin
         // at the build as long as no point moved more than skin / 2.
         const double limit = 0.25 * skin * skin;
-        for (std::size_t i = 0; i < positions.size(); ++i)
-          if (squared_distance(positions[i], built_positions[i]) > limit)
-            return true;
-        return false;
+        if (ids == built_ids)
+          {
+            // A new receiver has no list yet; a former one is simply
+            // skipped.
+            for (std::size_t i = 0; i < ids.size(); ++i)
+              if (is_receiver[i] && !built_receivers[i])
+                return ListAction::rebuild;
+            for (std::size_t i = 0; i < positions.size(); ++i)
+              if (squared_distance(positions[i], built_positions[i]) > limit)
+                return ListAction::rebuild;
+            return ListAction::reuse;
+          }
+        // Other points: a patch if each one was here at the last rebuild,
+        // as our own point or as a ghost, and has moved at most skin/2.
+        for (std::size_t i = 0; i < ids.size(); ++i)
+          {
+            const auto         id = ids[i];
+            const unsigned int b  = id < built_index_of_id.size()
+                                      ? built_index_of_id[id]
+                                      : numbers::invalid_unsigned_int;
+            if (b != numbers::invalid_unsigned_int)
+              {
+                if ((is_receiver[i] && !built_receivers[b]) ||
+                    squared_distance(positions[i], built_positions[b]) > limit)
+                  return ListAction::rebuild;
+                continue;
+              }
+            const auto it =
+              std::lower_bound(origin_ids.begin(), origin_ids.end(), id);
+            if (it == origin_ids.end() || *it != id ||
+                squared_distance(positions[i],
+                                 origin_positions[it - origin_ids.begin()]) >
+                  limit)
+              return ListAction::rebuild;
+          }
+        return ListAction::patch;
       };
-      const unsigned int mine = local_decision() ? 1 : 0;
-      return (n_ranks > 1 ? Utilities::MPI::max(mine, communicator) : mine) > 0;
+      const unsigned int mine = static_cast<unsigned int>(local_decision());
+      return static_cast<ListAction>(
+        n_ranks > 1 ? Utilities::MPI::max(mine, communicator) : mine);
     }
 
 
@@ -339,7 +397,8 @@ namespace scarp
     NonlocalAverager<dim>::setup_communication(
       const std::vector<BoundingBox<dim>>      &local_boxes,
       const std::vector<Point<dim>>            &positions,
-      const std::vector<types::particle_index> &ids)
+      const std::vector<types::particle_index> &ids,
+      const double                              reach)
     {
       const std::size_t n_local = positions.size();
       destinations.clear();
@@ -390,9 +449,9 @@ namespace scarp
           const std::vector<std::vector<BoundingBox<dim>>> global_regions =
             Utilities::MPI::all_gather(communicator, region);
 
-          // A source goes to every rank whose region is within cut-off +
-          // skin; a receiver there may then have it in its list.
-          const double reach  = weight.cutoff_radius() + skin;
+          // A source goes to every rank whose region is within the reach
+          // (cut-off + skin at a rebuild); a receiver there may then have it
+          // in its list.
           const double reach2 = reach * reach;
           if (any_point)
             {
@@ -486,8 +545,10 @@ namespace scarp
              ExcMessage("The point ids are not unique over all ranks."));
       slot_of_local.resize(n_local);
       slot_of_ghost.resize(n_ghost);
+      slot_ids.resize(order.size());
       for (unsigned int s = 0; s < order.size(); ++s)
         {
+          slot_ids[s]          = order[s].first;
           const unsigned int k = order[s].second;
           if (k < n_local)
             slot_of_local[k] = s;
@@ -590,19 +651,128 @@ namespace scarp
     NonlocalAverager<dim>::build_neighbour_lists(
       const std::vector<bool> &is_receiver)
     {
-      const std::size_t n_local  = slot_of_local.size();
-      const std::size_t n_source = source_positions.size();
-      const double      reach    = weight.cutoff_radius() + skin;
-      const double      reach2   = reach * reach;
-
+      const std::size_t n_local = slot_of_local.size();
       group_slots.clear();
       group_members.clear();
       group_start.assign(1, 0);
       group_neighbours.clear();
       list_length.assign(n_local, 0);
-      if (n_source == 0)
-        return;
+      std::vector<unsigned int> receivers;
+      for (unsigned int i = 0; i < n_local; ++i)
+        if (is_receiver[i])
+          receivers.push_back(i);
+      append_groups(std::move(receivers), weight.cutoff_radius() + skin);
+    }
 
+
+    template <int dim>
+    void
+    NonlocalAverager<dim>::patch_neighbour_lists(
+      const std::vector<bool>                  &is_receiver,
+      const std::vector<types::particle_index> &ids,
+      const std::vector<types::particle_index> &old_slot_ids)
+    {
+      const std::size_t  n_local = ids.size();
+      const unsigned int invalid = numbers::invalid_unsigned_int;
+
+      // Old slot -> new slot: both numberings ascend with the id.
+      std::vector<unsigned int> new_slot(old_slot_ids.size(), invalid);
+      for (std::size_t o = 0, n = 0; o < old_slot_ids.size(); ++o)
+        {
+          while (n < slot_ids.size() && slot_ids[n] < old_slot_ids[o])
+            ++n;
+          if (n < slot_ids.size() && slot_ids[n] == old_slot_ids[o])
+            new_slot[o] = n;
+        }
+      // Old local index -> new one; the points without one arrived.
+      std::vector<unsigned int> new_local(built_ids.size(), invalid);
+      std::vector<unsigned int> arrived;
+      std::vector<Point<dim>>   positions_at_build(n_local);
+      std::vector<bool>         receivers_at_build(n_local);
+      std::vector<unsigned int> lengths(n_local, 0);
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          const auto         id = ids[i];
+          const unsigned int b =
+            id < built_index_of_id.size() ? built_index_of_id[id] : invalid;
+          if (b != invalid)
+            {
+              new_local[b]          = i;
+              positions_at_build[i] = built_positions[b];
+              receivers_at_build[i] = built_receivers[b];
+              lengths[i]            = list_length[b];
+            }
+          else
+            {
+              // list_action() found it among the sources of the rebuild.
+              const auto it =
+                std::lower_bound(origin_ids.begin(), origin_ids.end(), id);
+              positions_at_build[i] = origin_positions[it - origin_ids.begin()];
+              receivers_at_build[i] = is_receiver[i];
+              if (is_receiver[i])
+                arrived.push_back(i);
+            }
+        }
+
+      // The kept groups, renumbered; groups whose members all left go.
+      std::vector<unsigned int> slots, members, neighbours;
+      std::vector<std::size_t>  start(1, 0);
+      slots.reserve(group_slots.size());
+      members.reserve(group_members.size());
+      neighbours.reserve(group_neighbours.size());
+      const std::size_t n_groups = group_start.size() - 1;
+      for (std::size_t g = 0; g < n_groups; ++g)
+        {
+          std::array<unsigned int, group_size> lane;
+          unsigned int                         first = invalid;
+          for (unsigned int l = 0; l < group_size; ++l)
+            {
+              const unsigned int i = group_members[g * group_size + l];
+              lane[l]              = i == invalid ? invalid : new_local[i];
+              if (first == invalid && lane[l] != invalid)
+                first = lane[l];
+            }
+          if (first == invalid)
+            continue;
+          for (unsigned int l = 0; l < group_size; ++l)
+            {
+              members.push_back(lane[l]);
+              // Unused lanes repeat a member; never read out.
+              slots.push_back(
+                slot_of_local[lane[l] == invalid ? first : lane[l]]);
+            }
+          // Sources no longer here are beyond the cut-off of every
+          // receiver here until the next rebuild (compute()): dropped.
+          for (std::size_t e = group_start[g]; e < group_start[g + 1]; ++e)
+            if (const unsigned int s = new_slot[group_neighbours[e]];
+                s != invalid)
+              neighbours.push_back(s);
+          start.push_back(neighbours.size());
+        }
+      group_slots.swap(slots);
+      group_members.swap(members);
+      group_start.swap(start);
+      group_neighbours.swap(neighbours);
+      list_length.swap(lengths);
+      built_positions.swap(positions_at_build);
+      built_receivers.swap(receivers_at_build);
+
+      // The arrived receivers, listed from where they are now: they and
+      // their sources may each move by up to skin before the next rebuild.
+      if (!arrived.empty())
+        append_groups(std::move(arrived), weight.cutoff_radius() + 2. * skin);
+    }
+
+
+    template <int dim>
+    void
+    NonlocalAverager<dim>::append_groups(std::vector<unsigned int> receivers,
+                                         const double              reach)
+    {
+      const std::size_t n_source = source_positions.size();
+      const double      reach2   = reach * reach;
+      if (n_source == 0 || receivers.empty())
+        return;
       // Uniform bins of size >= reach over the bounding box of all sources:
       // the neighbours of a point are then in its bin and the adjacent ones.
       Point<dim> lo = source_positions[0], hi = source_positions[0];
@@ -684,45 +854,47 @@ namespace scarp
           hi[d] > lo[d] ? ((std::uint64_t(1) << bits) - 1) / (hi[d] - lo[d])
                         : 0.;
       std::vector<std::pair<std::uint64_t, unsigned int>> order;
-      for (unsigned int i = 0; i < n_local; ++i)
-        if (is_receiver[i])
-          {
-            const Point<dim> &x = source_positions[slot_of_local[i]];
-            std::array<std::uint64_t, dim> c;
+      order.reserve(receivers.size());
+      for (const unsigned int i : receivers)
+        {
+          const Point<dim>              &x = source_positions[slot_of_local[i]];
+          std::array<std::uint64_t, dim> c;
+          for (unsigned int d = 0; d < dim; ++d)
+            c[d] = static_cast<std::uint64_t>(
+              std::max(0., (x[d] - lo[d]) * inverse_key_size[d]));
+          std::uint64_t key = 0;
+          for (unsigned int b = bits; b-- > 0;)
             for (unsigned int d = 0; d < dim; ++d)
-              c[d] = static_cast<std::uint64_t>(
-                std::max(0., (x[d] - lo[d]) * inverse_key_size[d]));
-            std::uint64_t key = 0;
-            for (unsigned int b = bits; b-- > 0;)
-              for (unsigned int d = 0; d < dim; ++d)
-                key = (key << 1) | ((c[d] >> b) & 1);
-            order.emplace_back(key, i);
-          }
+              key = (key << 1) | ((c[d] >> b) & 1);
+          order.emplace_back(key, i);
+        }
       std::sort(order.begin(), order.end());
 
+      const std::size_t first_group = group_start.size() - 1;
       const std::size_t n_groups = (order.size() + group_size - 1) / group_size;
-      group_slots.resize(n_groups * group_size);
-      group_members.assign(n_groups * group_size,
+      group_slots.resize((first_group + n_groups) * group_size);
+      group_members.resize((first_group + n_groups) * group_size,
                            numbers::invalid_unsigned_int);
-      group_start.reserve(n_groups + 1);
+      group_start.reserve(first_group + n_groups + 1);
       // The last group that listed each source, to form the unions.
       std::vector<std::size_t> listed_in(
         n_source, std::numeric_limits<std::size_t>::max());
       for (std::size_t g = 0; g < n_groups; ++g)
         {
+          const std::size_t lanes = (first_group + g) * group_size;
           for (unsigned int l = 0; l < group_size; ++l)
             {
               const std::size_t k = g * group_size + l;
               if (k >= order.size())
                 {
                   // Unused lanes repeat the first member; never read out.
-                  group_slots[k] = group_slots[g * group_size];
+                  group_slots[lanes + l] = group_slots[lanes];
                   continue;
                 }
-              const unsigned int i = order[k].second;
-              const unsigned int s = slot_of_local[i];
-              group_members[k]     = i;
-              group_slots[k]       = s;
+              const unsigned int i     = order[k].second;
+              const unsigned int s     = slot_of_local[i];
+              group_members[lanes + l] = i;
+              group_slots[lanes + l]   = s;
 
               const Point<dim>            &xp = source_positions[s];
               const auto                   c  = bin_coordinates(xp);

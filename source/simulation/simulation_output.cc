@@ -273,10 +273,12 @@ namespace scarp
       summary.add("points_removed", loop.counters.points_removed);
       if (averager)
         {
-          // How often the non-local lists were rebuilt, reused as they
-          // were, or reused for the same points in a new order.
+          // How often the non-local lists were rebuilt, patched after
+          // points changed ranks, reused as they were, or reused for the
+          // same points in a new order.
           postprocess::JsonObject lists;
           lists.add("rebuilds", double(averager->n_rebuilds()));
+          lists.add("patches", double(averager->n_patches()));
           lists.add("reuses", double(averager->n_reuses()));
           lists.add("reorders", double(averager->n_reorders()));
           summary.add("nonlocal_lists", lists);

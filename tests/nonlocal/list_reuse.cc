@@ -1,9 +1,10 @@
 // Reuse of the neighbour lists (doc/nonlocal.md, "Reuse"): moves below half
 // the skin reuse the lists and give the same averages as a fresh build, also
 // when a pair that was beyond the cut-off at the build has come within it;
-// the same points in another order reuse them through a reordering; larger
-// moves, other ids (fewer points), a new receiver, other boxes,
-// invalidate_neighbour_lists() and reinit() rebuild.
+// the same points in another order reuse them through a reordering; a
+// removed point patches them (as a point that left for another rank);
+// larger moves, a new receiver, other boxes, invalidate_neighbour_lists()
+// and reinit() rebuild.
 
 #include <deal.II/base/mpi.h>
 
@@ -23,15 +24,18 @@ public:
   }
 
   /// Average @p points with the persistent averager, compare with a fresh
-  /// one, and check that the persistent one rebuilt iff @p expect_rebuild.
+  /// one, and check that the persistent one rebuilt iff @p expect_rebuild
+  /// (else reused, or patched if @p expect_patch).
   std::vector<double>
   step(const PointSet<dim>                 &points,
        const bool                           expect_rebuild,
        const std::string                   &what,
-       const std::vector<BoundingBox<dim>> &boxes = cube<dim>(-1., 4.))
+       const std::vector<BoundingBox<dim>> &boxes        = cube<dim>(-1., 4.),
+       const bool                           expect_patch = false)
   {
     const unsigned int rebuilds = averager.n_rebuilds();
     const unsigned int reuses   = averager.n_reuses();
+    const unsigned int patches  = averager.n_patches();
     const auto         ybar     = points.average(averager, boxes);
 
     NonlocalAverager<dim> fresh(MPI_COMM_SELF);
@@ -46,16 +50,28 @@ public:
       max_difference = std::max(max_difference,
                                 std::abs(ybar[i] - reference[i]) /
                                   std::max(1., std::abs(reference[i])));
-    const bool rebuilt =
-      averager.n_rebuilds() == rebuilds + 1 && averager.n_reuses() == reuses;
-    const bool reused =
-      averager.n_rebuilds() == rebuilds && averager.n_reuses() == reuses + 1;
+    const bool rebuilt = averager.n_rebuilds() == rebuilds + 1 &&
+                         averager.n_reuses() == reuses &&
+                         averager.n_patches() == patches;
+    const bool reused = averager.n_rebuilds() == rebuilds &&
+                        averager.n_reuses() == reuses + 1 &&
+                        averager.n_patches() == patches;
+    const bool patched = averager.n_rebuilds() == rebuilds &&
+                         averager.n_reuses() == reuses &&
+                         averager.n_patches() == patches + 1;
     const std::string name =
       std::to_string(dim) + "D " + to_string(type) + ", " + what;
-    std::cout << name << ": " << (rebuilt ? "rebuilt" : "reused")
+    std::cout << name << ": "
+              << (rebuilt   ? "rebuilt"
+                  : patched ? "patched"
+                  : reused  ? "reused"
+                            : "?")
               << ", difference to a fresh build " << max_difference
               << std::endl;
-    check(expect_rebuild ? rebuilt : reused, name + ": rebuild or reuse");
+    check(expect_rebuild ? rebuilt
+          : expect_patch ? patched
+                         : reused,
+          name + ": rebuild, patch or reuse");
     check(max_difference <= 1e-14, name + ": same as a fresh build");
     return ybar;
   }
@@ -139,7 +155,7 @@ run(const WeightType type)
                     points.values[i],
                     points.receivers[i],
                     points.ids[i]);
-  checker.step(fewer, true, "a point removed");
+  checker.step(fewer, false, "a point removed", cube<dim>(-1., 4.), true);
   checker.step(fewer, false, "unchanged again");
   std::swap(fewer.positions[0], fewer.positions[1]);
   std::swap(fewer.volumes[0], fewer.volumes[1]);
@@ -163,6 +179,9 @@ run(const WeightType type)
   checker.step(fewer, true, "invalidated", cube<dim>(-1., 5.));
   checker.averager.reinit(type, checker.l_c, 0.1);
   checker.step(fewer, true, "after reinit", cube<dim>(-1., 5.));
+  // A point the last build never saw (a split point) rebuilds.
+  fewer.push_back(fewer.positions[3], 1e-3, 0.5, true, pair_id + 2);
+  checker.step(fewer, true, "a new point", cube<dim>(-1., 5.));
 }
 
 int

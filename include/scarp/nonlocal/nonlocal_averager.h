@@ -99,6 +99,19 @@ namespace scarp
        * Otherwise they are reused: every pair now closer than the cut-off
        * was closer than cut-off + skin at the build, because neither point
        * moved more than skin/2.
+       *
+       * Points that only changed ranks (the flowing debris crossing the
+       * partition) do not rebuild the lists: if every point of every rank
+       * was a source of the last build on that rank (own or ghost) and
+       * moved at most skin/2 since, the lists are patched instead (see
+       * n_patches()): the ghosts are chosen anew with a reach of cut-off +
+       * 2 skin, the kept lists are renumbered to the new slots (dropping
+       * sources no longer present, which are beyond the cut-off of every
+       * receiver here), departed receivers leave their lanes, and the
+       * arrived receivers get lists of the sources within cut-off + 2 skin
+       * of their present position. Every pair now closer than the cut-off
+       * is still listed, in id order, so the averages are bit-identical to
+       * a rebuild.
        */
       void
       compute(const std::vector<BoundingBox<dim>>      &local_boxes,
@@ -166,6 +179,14 @@ namespace scarp
         return reuse_count;
       }
 
+      /// Number of compute() calls that patched the lists after points
+      /// changed ranks (see compute()).
+      unsigned int
+      n_patches() const
+      {
+        return patch_count;
+      }
+
       /// Number of compute() calls that reused the lists for the same points
       /// in another order (points that changed cells).
       unsigned int
@@ -230,18 +251,29 @@ namespace scarp
                        const std::vector<bool>                  *is_source,
                        const std::vector<types::particle_index> &ids,
                        std::vector<double>                      &averages);
-      bool
-      needs_rebuild(const std::vector<BoundingBox<dim>>      &local_boxes,
-                    const std::vector<Point<dim>>            &positions,
-                    const std::vector<bool>                  &is_receiver,
-                    const std::vector<types::particle_index> &ids) const;
+      /// What compute() does with the lists, in increasing cost.
+      enum class ListAction
+      {
+        reuse,
+        patch,
+        rebuild
+      };
 
-      /// Choose the sources to send to each rank, learn whom we receive
-      /// from, exchange ids and number all sources in the order of their ids.
+      /// Decide (collectively) what to do with the lists.
+      ListAction
+      list_action(const std::vector<BoundingBox<dim>>      &local_boxes,
+                  const std::vector<Point<dim>>            &positions,
+                  const std::vector<bool>                  &is_receiver,
+                  const std::vector<types::particle_index> &ids) const;
+
+      /// Choose the sources within @p reach of our region to send to each
+      /// rank, learn whom we receive from, exchange ids and number all
+      /// sources in the order of their ids.
       void
       setup_communication(const std::vector<BoundingBox<dim>>      &local_boxes,
                           const std::vector<Point<dim>>            &positions,
-                          const std::vector<types::particle_index> &ids);
+                          const std::vector<types::particle_index> &ids,
+                          const double                              reach);
 
       /// Send positions, volumes and values of the ghosts, and fill the
       /// source arrays (local and ghost) in id order. Points that are no
@@ -255,6 +287,22 @@ namespace scarp
       /// Build the neighbour lists of the receivers with a cell list.
       void
       build_neighbour_lists(const std::vector<bool> &is_receiver);
+
+      /// Renumber the lists to the sources of a new communication pattern
+      /// and list the receivers that arrived from other ranks (see
+      /// compute()). @p ids are this rank's points now, built_ids those of
+      /// the lists, @p old_slot_ids the ids of the lists' slots.
+      void
+      patch_neighbour_lists(
+        const std::vector<bool>                  &is_receiver,
+        const std::vector<types::particle_index> &ids,
+        const std::vector<types::particle_index> &old_slot_ids);
+
+      /// Append groups of the receivers @p members (local indices, grouped
+      /// in Morton order), each group listing the sources within @p reach
+      /// of one of its members, in slot order.
+      void
+      append_groups(std::vector<unsigned int> members, const double reach);
 
       /// The weighted sums and the averages.
       void
@@ -286,6 +334,13 @@ namespace scarp
       std::vector<Point<dim>>   ordered_positions;
       std::vector<double> ordered_volumes, ordered_values, ordered_averages;
       std::vector<bool>   ordered_receivers, ordered_sources;
+      /// The sources (own and ghost) of the last rebuild: ids ascending and
+      /// positions, to find the build position of a point that has since
+      /// come from another rank.
+      std::vector<types::particle_index> origin_ids;
+      std::vector<Point<dim>>            origin_positions;
+      /// Patches since the last rebuild.
+      unsigned int patches_since_build = 0;
 
       // Communication pattern: the local indices sent to each destination,
       // and the number of ghosts from each source rank (ascending ranks).
@@ -297,9 +352,10 @@ namespace scarp
 
       // All sources (local, then ghosts) are numbered in the order of their
       // ids ("slots"), so that a list sorted by slot sums in id order.
-      std::vector<unsigned int> slot_of_local;
-      std::vector<unsigned int> slot_of_ghost;
-      std::vector<Point<dim>>   source_positions;
+      std::vector<unsigned int>          slot_of_local;
+      std::vector<unsigned int>          slot_of_ghost;
+      std::vector<types::particle_index> slot_ids;
+      std::vector<Point<dim>>            source_positions;
       /// Per slot, what the sums read: position, volume V, V Y (one cache
       /// line in 2D).
       std::vector<std::array<double, dim + 2>> source_data;
@@ -329,6 +385,7 @@ namespace scarp
       unsigned int rebuild_count            = 0;
       unsigned int reuse_count              = 0;
       unsigned int reorder_count            = 0;
+      unsigned int patch_count              = 0;
       unsigned int communicating_call_count = 0;
       std::size_t  listed_pair_count        = 0;
       std::size_t  interacting_pair_count   = 0;
