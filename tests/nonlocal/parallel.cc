@@ -26,19 +26,8 @@ run(const WeightType type, const bool exclude)
   const double       h   = 1. / (n - 1);
   const double       l_c = dim == 2 ? 0.04 : 0.08; // R = 4 h (2D), 2.5 h (3D)
 
-  PointSet<dim> all = make_lattice<dim>(n, h);
-  for (std::size_t i = 0; i < all.size(); ++i)
-    {
-      all.volumes[i] *= 1. + 0.3 * std::sin(0.7 * i);
-      all.receivers[i] = (i % 7 != 3);
-    }
-  if (exclude)
-    {
-      all.sources.resize(all.size());
-      for (std::size_t i = 0; i < all.size(); ++i)
-        all.sources[i] = (i % 5 != 1);
-    }
-  const auto set_values = [&all](const double t) {
+  PointSet<dim> all        = make_varied_lattice<dim>(n, h, exclude);
+  const auto    set_values = [&all](const double t) {
     for (std::size_t i = 0; i < all.size(); ++i)
       {
         const auto &x = all.positions[i];

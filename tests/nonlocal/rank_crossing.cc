@@ -31,21 +31,13 @@ run(const WeightType type, const bool exclude)
   const double       h   = 1. / (n - 1);
   const double       l_c = dim == 2 ? 0.04 : 0.08; // R = 4 h (2D), 2.5 h (3D)
 
-  PointSet<dim> all = make_lattice<dim>(n, h);
+  PointSet<dim> all = make_varied_lattice<dim>(n, h, exclude);
   for (std::size_t i = 0; i < all.size(); ++i)
     {
       // Each row shifted in x by a different fraction of h, so that the
       // rows cross a slab boundary at different calls.
       const double row = double(i / n) * 0.6180339887;
       all.positions[i][0] += h * (row - std::floor(row));
-      all.volumes[i] *= 1. + 0.3 * std::sin(0.7 * i);
-      all.receivers[i] = (i % 7 != 3);
-    }
-  if (exclude)
-    {
-      all.sources.resize(all.size());
-      for (std::size_t i = 0; i < all.size(); ++i)
-        all.sources[i] = (i % 5 != 1);
     }
 
   // Fixed slabs of the "mesh" (the boxes do not change, so the lists may

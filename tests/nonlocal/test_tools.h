@@ -123,6 +123,28 @@ namespace scarp_test
     return points;
   }
 
+  /// The lattice of the parallel tests: make_lattice() with volumes varied
+  /// by up to 30 %, every seventh point no receiver and, with @p exclude,
+  /// every fifth point left out of the sums.
+  template <int dim>
+  PointSet<dim>
+  make_varied_lattice(const unsigned int n, const double h, const bool exclude)
+  {
+    PointSet<dim> points = make_lattice<dim>(n, h);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        points.volumes[i] *= 1. + 0.3 * std::sin(0.7 * i);
+        points.receivers[i] = (i % 7 != 3);
+      }
+    if (exclude)
+      {
+        points.sources.resize(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i)
+          points.sources[i] = (i % 5 != 1);
+      }
+    return points;
+  }
+
   /**
    * The straightforward non-local average, as NonlocalAverager computed it
    * before its sums were grouped (doc/nonlocal.md, "Speed"): for each
