@@ -285,12 +285,11 @@ namespace scarp
                               weight.cutoff_radius() + skin);
           exchange_source_data(positions, volumes, values, is_source);
           build_neighbour_lists(is_receiver);
-          origin_ids          = slot_ids;
-          origin_positions    = source_positions;
-          patches_since_build = 0;
-          built_boxes         = local_boxes;
-          built_positions     = positions;
-          built_receivers     = is_receiver;
+          origin_ids       = slot_ids;
+          origin_positions = source_positions;
+          built_boxes      = local_boxes;
+          built_positions  = positions;
+          built_receivers  = is_receiver;
           ++rebuild_count;
         }
       else if (action == ListAction::patch)
@@ -306,7 +305,6 @@ namespace scarp
                               weight.cutoff_radius() + 2. * skin);
           exchange_source_data(positions, volumes, values, is_source);
           patch_neighbour_lists(is_receiver, ids, old_slot_ids);
-          ++patches_since_build;
           ++patch_count;
         }
       else

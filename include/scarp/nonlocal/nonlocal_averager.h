@@ -339,8 +339,6 @@ namespace scarp
       /// come from another rank.
       std::vector<types::particle_index> origin_ids;
       std::vector<Point<dim>>            origin_positions;
-      /// Patches since the last rebuild.
-      unsigned int patches_since_build = 0;
 
       // Communication pattern: the local indices sent to each destination,
       // and the number of ghosts from each source rank (ascending ranks).
