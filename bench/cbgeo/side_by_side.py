@@ -1,0 +1,483 @@
+#!/usr/bin/python3
+"""Run scarp and CB-Geo mpm side by side on the same elastic column under
+gravity, one core each, and print their speed and their bottom stress
+(doc/performance.md, "Side by side with CB-Geo `mpm`").
+
+    python3 bench/cbgeo/side_by_side.py [--scarp build/scarp]
+        [--cbgeo /work/cbgeo/build/mpm] [--sizes 25,40,80] [--steps 2000]
+        [--repeat 5] [--youngs 1e8] [--work /tmp/scarp-cbgeo] [--csv FILE]
+
+Run from the repository root. CB-Geo mpm is not part of scarp: build it
+from its own public source, outside this repository (doc/performance.md
+says how), and pass its executable with --cbgeo. Reading its HDF5 output
+needs h5dump (Debian package hdf5-tools); without it the stresses of
+CB-Geo are not shown, the timings are.
+
+The problem, written for both codes into --work (nothing of CB-Geo is
+kept in the repository; its input files are generated here):
+
+* a 2D (plane strain) column W = 2 m wide and H = 4 m high, on a mesh of
+  n x 2n square cells of h = W/n (--sizes gives n), with four empty layers
+  of cells above it (as bench/run_bench.py's column); 2 x 2 material
+  points per cell at the quarter points of the cells, 8 n^2 points
+  (n = 25, 40, 80: 5 000, 12 800, 51 200 points);
+* linear elastic, density 1000 kg/m^3, E = 100 MPa (--youngs), nu = 0.3,
+  gravity 9.81 m/s^2 applied at once from rest (no damping: the column
+  oscillates about its hydrostatic state). bench/run_bench.py's column has
+  E = 1 MPa; there the top of this column settles by up to 0.12 m, more
+  than a cell, and with USL both codes stop within 350 steps (points
+  crossing cells at the free surface: scarp finds inverted points, CB-Geo
+  a point outside the mesh). With 100 MPa the strain is 3e-4 and no point
+  leaves its cell; the time step scales with it (dt = 0.5 h / c_p), so
+  the steps cover the same number of periods of the column;
+* bottom fixed (both velocity components zero), left and right sides
+  rollers (normal velocity zero), top free;
+* USL (stress update with the grid velocity of the solve), PIC (the
+  points take the grid velocity), bilinear (Q1) shape functions;
+* a fixed time step dt = 0.5 h / c_p (c_p the P-wave speed, 367 m/s) and
+  --steps steps (scarp: <Maximum time step> = dt with <CFL number> 1, so
+  that the bound on dt is the one that holds, and <End time> = steps dt);
+* output: scarp writes its particles at the start and at the end and one
+  statistics row at the end; CB-Geo writes its particles (HDF5) after the
+  first step and after the last one (output_steps = steps - 1) and logs a
+  line per step to stdout, which goes to a file.
+
+The runs alternate, scarp then CB-Geo, size by size, --repeat times, so
+that a change of the load of a shared machine hits both alike; the table
+gives medians over the repeats of:
+
+* wall: wall time of the process (start-up, set-up, the steps and the
+  output); cpu: its user + system time (moves less with the load);
+* loop: the time of the time-stepping loop by the code's own clock
+  (scarp: summary.json, stages/load/wall_time; CB-Geo: the "solver
+  duration" line of its log);
+* Mps: million point-steps per second of loop time, and of wall time;
+* syy: the mean vertical stress of the bottom row of points (reference
+  height h/4) after the last step, and the analytic hydrostatic value
+  -rho g (H - h/4) (compression negative). The column is not at rest (the
+  load was applied at once and nothing damps it but the PIC transfer), so
+  the ratio syy / analytic is a phase of the oscillation, not an error;
+  the point is that both codes compute the same thing.
+
+Both run single-threaded on one process: scarp without mpirun (one rank,
+one thread), CB-Geo with OMP_NUM_THREADS=1 and -p 1. Nothing is asserted.
+"""
+import argparse
+import base64
+import csv
+import glob
+import json
+import math
+import os
+import re
+import resource
+import shutil
+import statistics
+import struct
+import subprocess
+import sys
+import time
+import zlib
+
+WIDTH, HEIGHT, EMPTY_LAYERS = 2.0, 4.0, 4
+RHO, NU, G = 1000.0, 0.3, 9.81
+E = 1e8  # Young's modulus [Pa], --youngs
+
+
+def p_wave_speed():
+    m = E * (1 - NU) / ((1 + NU) * (1 - 2 * NU))
+    return math.sqrt(m / RHO)
+
+
+class Column:
+    """Geometry and time step of the column with n cells across."""
+
+    def __init__(self, n, steps):
+        self.n = n
+        self.h = WIDTH / n
+        self.nx, self.ny = n, 2 * n + EMPTY_LAYERS
+        self.top = HEIGHT + EMPTY_LAYERS * self.h
+        self.points = 4 * n * 2 * n
+        self.steps = steps
+        self.dt = 0.5 * self.h / p_wave_speed()
+        self.name = "column_%d" % self.points
+
+    def point_coordinates(self):
+        """The quarter points of the column's cells, row by row."""
+        h = self.h
+        for j in range(2 * self.n):
+            for b in (0.25, 0.75):
+                y = (j + b) * h
+                for i in range(self.n):
+                    for a in (0.25, 0.75):
+                        yield (i + a) * h, y
+
+
+SCARP_TEMPLATE = """# Elastic column under gravity, generated by bench/cbgeo/side_by_side.py
+# (the same problem as the CB-Geo input beside it)
+set Dimension = 2
+set Materials = elastic
+set Bodies    = column
+set Stages    = load
+set Output directory = out
+subsection Mesh
+  set Lower corner = 0, 0
+  set Upper corner = {width!r}, {top!r}
+  set Cell size    = {h!r}
+  subsection Boundary conditions
+    set Left   = slip
+    set Right  = slip
+    set Bottom = fixed
+    set Top    = free
+  end
+end
+subsection Material elastic
+  set Model   = linear elastic
+  set Density = {rho!r}
+  subsection Elasticity
+    set Young's modulus = {E!r}
+    set Poisson's ratio = {nu!r}
+  end
+end
+subsection Body column
+  set Material = elastic
+  set Particles per cell = 2
+  set Shape = box
+  set Box corners = 0, 0, {width!r}, {height!r}
+end
+subsection Physics
+  set Gravity = 0, {g!r}
+end
+subsection Time
+  set CFL number        = 1
+  set Maximum time step = {dt!r}
+end
+subsection Transfer
+  set Shape functions   = Q1
+  set Velocity transfer = PIC
+  set Update scheme     = USL
+end
+subsection Stage load
+  set End time   = {end_time!r}
+  set Plasticity = false
+  set Damage     = false
+end
+subsection Output
+  set Interval            = 0
+  set Statistics interval = {steps}
+  set Write mesh          = false
+end
+"""
+
+
+def write_scarp_input(col, directory):
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, col.name + ".prm")
+    with open(path, "w") as f:
+        f.write(SCARP_TEMPLATE.format(
+            width=WIDTH, top=col.top, h=col.h, rho=RHO, E=E, nu=NU,
+            height=HEIGHT, g=-G, dt=col.dt, end_time=col.steps * col.dt,
+            steps=col.steps))
+    return path
+
+
+def write_cbgeo_input(col, directory):
+    """CB-Geo's ASCII mesh (nodes, then the cells' nodes counter-clockwise
+    from the lower left), particle coordinates, nodal velocity constraints
+    (node, direction, velocity) and the input JSON."""
+    os.makedirs(directory, exist_ok=True)
+    nx, ny, h = col.nx, col.ny, col.h
+
+    def node(i, j):
+        return j * (nx + 1) + i
+
+    with open(os.path.join(directory, "mesh.txt"), "w") as f:
+        f.write("%d\t%d\n" % ((nx + 1) * (ny + 1), nx * ny))
+        for j in range(ny + 1):
+            for i in range(nx + 1):
+                f.write("%r\t%r\n" % (i * h, j * h))
+        for j in range(ny):
+            for i in range(nx):
+                f.write("%d\t%d\t%d\t%d\n" % (
+                    node(i, j), node(i + 1, j), node(i + 1, j + 1),
+                    node(i, j + 1)))
+    with open(os.path.join(directory, "particles.txt"), "w") as f:
+        f.write("%d\n" % col.points)
+        for x, y in col.point_coordinates():
+            f.write("%r\t%r\n" % (x, y))
+    with open(os.path.join(directory, "velocity_constraints.txt"), "w") as f:
+        for i in range(nx + 1):          # bottom: fixed
+            f.write("%d\t0\t0\n%d\t1\t0\n" % (node(i, 0), node(i, 0)))
+        for j in range(1, ny + 1):       # sides: rollers
+            f.write("%d\t0\t0\n%d\t0\t0\n" % (node(0, j), node(nx, j)))
+    inp = {
+        "title": "Elastic column under gravity, generated by "
+                 "bench/cbgeo/side_by_side.py",
+        "mesh": {
+            "mesh": "mesh.txt",
+            "io_type": "Ascii2D",
+            "check_duplicates": False,
+            "isoparametric": False,
+            "node_type": "N2D",
+            "cell_type": "ED2Q4",
+            "boundary_conditions": {
+                "velocity_constraints": [
+                    {"file": "velocity_constraints.txt"}]},
+        },
+        "particles": [{
+            "generator": {
+                "type": "file",
+                "location": "particles.txt",
+                "io_type": "Ascii2D",
+                "particle_type": "P2D",
+                "material_id": 0,
+                "pset_id": 0,
+                "check_duplicates": False}}],
+        "materials": [{
+            "id": 0, "type": "LinearElastic2D", "density": RHO,
+            "youngs_modulus": E, "poisson_ratio": NU}],
+        "external_loading_conditions": {"gravity": [0.0, -G]},
+        "analysis": {
+            "type": "MPMExplicit2D",
+            "mpm_scheme": "usl",
+            "velocity_update": True,
+            "locate_particles": True,
+            "dt": col.dt,
+            "nsteps": col.steps,
+            "uuid": col.name,
+            "resume": {"resume": False},
+        },
+        "post_processing": {
+            "path": "results/",
+            "output_steps": col.steps - 1,
+        },
+    }
+    with open(os.path.join(directory, "mpm.json"), "w") as f:
+        json.dump(inp, f, indent=2)
+    return directory
+
+
+def run_timed(cmd, cwd, log_path, env=None):
+    """Run cmd; return (wall seconds, CPU seconds of the child)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.monotonic()
+    with open(log_path, "w") as log:
+        status = subprocess.call(cmd, cwd=cwd, stdout=log,
+                                 stderr=subprocess.STDOUT, env=env)
+    wall = time.monotonic() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if status != 0:
+        sys.exit("side_by_side: %s failed (exit %d), see %s" %
+                 (" ".join(cmd), status, log_path))
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime -
+                                                 before.ru_stime)
+    return wall, cpu
+
+
+def vtu_arrays(path, names):
+    """The named DataArrays of a deal.II VTU file (binary, zlib-compressed
+    or not) as lists of floats."""
+    with open(path) as f:
+        text = f.read()
+    compressed = "vtkZLibDataCompressor" in text
+    out = {}
+    for m in re.finditer(r'<DataArray([^>]*)>(.*?)</DataArray>', text,
+                         re.S):
+        attrs, body = m.group(1), m.group(2).strip()
+        name = re.search(r'Name="([^"]*)"', attrs)
+        if not name or name.group(1) not in names:
+            continue
+        kind = re.search(r'type="([^"]*)"', attrs).group(1)
+        fmt = {"Float32": "f", "Float64": "d"}[kind]
+        if 'format="ascii"' in attrs:
+            values = [float(v) for v in body.split()]
+        elif compressed:
+            # Header: number of blocks, block size, size of the last block,
+            # compressed size of each block (uint32), base64 on its own.
+            nblocks = struct.unpack("<I", base64.b64decode(body[:8])[:4])[0]
+            hlen = 4 * math.ceil(4 * (3 + nblocks) / 3)
+            header = struct.unpack("<%dI" % (3 + nblocks),
+                                   base64.b64decode(body[:hlen]))
+            data = base64.b64decode(body[hlen:])
+            raw, pos = b"", 0
+            for size in header[3:]:
+                raw += zlib.decompress(data[pos:pos + size])
+                pos += size
+            values = list(struct.unpack("<%d%s" % (len(raw) // struct.calcsize(
+                fmt), fmt), raw))
+        else:
+            raw = base64.b64decode(body)[4:]
+            values = list(struct.unpack("<%d%s" % (len(raw) // struct.calcsize(
+                fmt), fmt), raw))
+        out[name.group(1)] = values
+    return out
+
+
+def scarp_bottom_stress(out_dir, col):
+    """Mean stress_yy of the points whose reference height is below h/2,
+    from the last particle output."""
+    files = sorted(glob.glob(os.path.join(out_dir, "particles_*.0.vtu")))
+    a = vtu_arrays(files[-1], ("reference_position", "stress_yy"))
+    ref_y = a["reference_position"][1::3]
+    s = [syy for y, syy in zip(ref_y, a["stress_yy"]) if y < 0.5 * col.h]
+    return sum(s) / len(s), len(s)
+
+
+def cbgeo_bottom_stress(run_dir, col):
+    """Mean stress_yy of the points whose initial height (coordinate minus
+    displacement) is below h/2, from CB-Geo's last HDF5 output (h5dump)."""
+    h5dump = shutil.which("h5dump")
+    files = sorted(glob.glob(os.path.join(run_dir, "results", col.name,
+                                          "particles*.h5")))
+    if not h5dump or not files:
+        return float("nan"), 0
+    text = subprocess.run([h5dump, "-d", "/table", "-w", "0", "-y", "-m",
+                           "%.17g", files[-1]], capture_output=True,
+                          text=True, check=True).stdout
+    head, data = text.split("DATA {", 1)
+    names = re.findall(r'H5T_\S+\s+"([^"]+)";', head)
+    records = [[v.strip() for v in rec.split(",")]
+               for rec in re.findall(r"\{([^{}]*)\}", data)]
+    records = [rec for rec in records if len(rec) == len(names)]
+    values = {field: [float(rec[names.index(field)]) for rec in records]
+              for field in ("coord_y", "displacement_y", "stress_yy")}
+    s = [syy for y, u, syy in zip(values["coord_y"], values["displacement_y"],
+                                  values["stress_yy"])
+         if y - u < 0.5 * col.h]
+    return (sum(s) / len(s) if s else float("nan")), len(s)
+
+
+def run_scarp(scarp, prm, run_dir, col):
+    if os.path.exists(run_dir):
+        shutil.rmtree(run_dir)
+    os.makedirs(run_dir)
+    wall, cpu = run_timed([os.path.abspath(scarp), os.path.abspath(prm)],
+                          run_dir, os.path.join(run_dir, "scarp.log"))
+    with open(os.path.join(run_dir, "out", "summary.json")) as f:
+        summary = json.load(f)
+    syy, count = scarp_bottom_stress(os.path.join(run_dir, "out"), col)
+    return {"points": summary["material_points"], "steps": summary["steps"],
+            "wall_s": wall, "cpu_s": cpu,
+            "loop_s": summary["stages"]["load"]["wall_time"],
+            "syy_bottom": syy, "bottom_points": count}
+
+
+def run_cbgeo(cbgeo, input_dir, run_dir, col):
+    if os.path.exists(run_dir):
+        shutil.rmtree(run_dir)
+    shutil.copytree(input_dir, run_dir)
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    log = os.path.join(run_dir, "cbgeo.log")
+    wall, cpu = run_timed([os.path.abspath(cbgeo), "-f",
+                           os.path.abspath(run_dir) + "/", "-i", "mpm.json",
+                           "-p", "1"], run_dir, log, env)
+    loop = float("nan")
+    steps = 0
+    with open(log) as f:
+        for line in f:
+            m = re.search(r"solver duration: (\d+) ms", line)
+            if m:
+                loop = float(m.group(1)) / 1000.
+            if "Step: " in line:
+                steps += 1
+    syy, count = cbgeo_bottom_stress(run_dir, col)
+    return {"points": col.points, "steps": steps, "wall_s": wall,
+            "cpu_s": cpu, "loop_s": loop, "syy_bottom": syy,
+            "bottom_points": count}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--scarp", default="build/scarp")
+    ap.add_argument("--cbgeo", default="/work/cbgeo/build/mpm")
+    ap.add_argument("--sizes", default="25,40,80",
+                    help="cells across the column (8 n^2 points)")
+    ap.add_argument("--steps", type=int, default=2000)
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--youngs", type=float, default=1e8,
+                    help="Young's modulus [Pa] (1e6: points cross cells at "
+                    "the top, and USL fails in both codes)")
+    ap.add_argument("--work", default="/tmp/scarp-cbgeo")
+    ap.add_argument("--csv", default="",
+                    help="append one row per run to this CSV file")
+    args = ap.parse_args()
+    global E
+    E = args.youngs
+    for exe in (args.scarp, args.cbgeo):
+        if not os.access(exe, os.X_OK):
+            sys.exit("side_by_side: %s is not an executable" % exe)
+
+    columns = [Column(int(n), args.steps) for n in args.sizes.split(",")]
+    inputs = {}
+    for col in columns:
+        inputs[col.name] = (
+            write_scarp_input(col, os.path.join(args.work, "inputs")),
+            write_cbgeo_input(col, os.path.join(args.work, "inputs",
+                                                col.name + "_cbgeo")))
+
+    fields = ["code", "points", "steps", "repeat", "wall_s", "cpu_s",
+              "loop_s", "syy_bottom", "bottom_points"]
+    writer = None
+    if args.csv:
+        new_file = not os.path.exists(args.csv)
+        csv_file = open(args.csv, "a", newline="")
+        writer = csv.DictWriter(csv_file, fieldnames=fields,
+                                extrasaction="ignore")
+        if new_file:
+            writer.writeheader()
+    results = {}
+    for r in range(args.repeat):
+        for col in columns:
+            prm, cb_input = inputs[col.name]
+            for code in ("scarp", "cbgeo"):
+                run_dir = os.path.join(args.work, "%s_%s_%d" % (
+                    col.name, code, r))
+                if code == "scarp":
+                    row = run_scarp(args.scarp, prm, run_dir, col)
+                else:
+                    row = run_cbgeo(args.cbgeo, cb_input, run_dir, col)
+                row.update(code=code, repeat=r)
+                results.setdefault((col.name, code), []).append(row)
+                if writer:
+                    writer.writerow(row)
+                    csv_file.flush()
+                print("%-14s %-6s run %d: wall %6.2f s, cpu %6.2f s, loop "
+                      "%6.2f s, syy bottom %.6g Pa" % (
+                          col.name, code, r, row["wall_s"], row["cpu_s"],
+                          row["loop_s"], row["syy_bottom"]), flush=True)
+
+    def med(rows, key):
+        return statistics.median(x[key] for x in rows)
+
+    print("\nMedians over %d run(s), one core each (USL, PIC, Q1, dt = 0.5 "
+          "h / c_p)" % args.repeat)
+    print("%7s %6s %-6s %8s %8s %8s %9s %9s %12s %12s %7s" % (
+        "points", "steps", "code", "wall s", "cpu s", "loop s", "Mps loop",
+        "Mps wall", "syy bottom", "-rho g(H-y)", "ratio"))
+    for col in columns:
+        exact = -RHO * G * (HEIGHT - 0.25 * col.h)
+        for code in ("scarp", "cbgeo"):
+            rows = results[(col.name, code)]
+            ps = col.points * col.steps
+            syy = rows[-1]["syy_bottom"]
+            print("%7d %6d %-6s %8.2f %8.2f %8.2f %9.3f %9.3f %12.1f %12.1f "
+                  "%7.4f" % (
+                      col.points, rows[-1]["steps"], code, med(rows, "wall_s"),
+                      med(rows, "cpu_s"), med(rows, "loop_s"),
+                      ps / med(rows, "loop_s") / 1e6,
+                      ps / med(rows, "wall_s") / 1e6, syy, exact,
+                      syy / exact))
+        s, c = results[(col.name, "scarp")], results[(col.name, "cbgeo")]
+        print("%7d %6s %-6s %8.2f %8.2f %8.2f   (CB-Geo / scarp; bottom "
+              "stress scarp / CB-Geo - 1 = %+.2e)" % (
+                  col.points, "", "ratio", med(c, "wall_s") / med(s, "wall_s"),
+                  med(c, "cpu_s") / med(s, "cpu_s"),
+                  med(c, "loop_s") / med(s, "loop_s"),
+                  s[-1]["syy_bottom"] / c[-1]["syy_bottom"] - 1))
+    if writer:
+        csv_file.close()
+        print("CSV: %s" % args.csv)
+
+
+if __name__ == "__main__":
+    main()
