@@ -5,7 +5,9 @@
 
 #include <scarp/particles/point_mover.h>
 
+#include <cstring>
 #include <iterator>
+#include <map>
 
 namespace scarp
 {
@@ -62,10 +64,10 @@ namespace scarp
       /**
        * The active cell holding @p x, walked to from @p start_cell through
        * face neighbours (into the child on the side of @p x where the
-       * neighbour is finer), possibly through ghost cells. False if the
-       * walk leaves the mesh, meets an artificial cell, ends in a cell that
-       * is not locally owned, or does not end within a few cells (a point
-       * moves less than a cell per step): the full sort then decides.
+       * neighbour is finer), possibly through ghost cells: locally owned or
+       * a ghost cell (another rank's). False if the walk leaves the mesh,
+       * meets an artificial cell or does not end within a few cells (a
+       * point moves less than a cell per step): the full sort then decides.
        */
       template <int dim>
       bool
@@ -85,8 +87,6 @@ namespace scarp
             const unsigned int face = exit_face(xi);
             if (face == numbers::invalid_unsigned_int)
               {
-                if (!cell->is_locally_owned())
-                  return false;
                 found = cell;
                 return true;
               }
@@ -121,6 +121,7 @@ namespace scarp
                                     const std::vector<unsigned int> &handles)
     {
       moves.clear();
+      n_leaving_rank       = 0;
       auto          &pool  = particles.get_property_pool();
       bool           local = true;
       Point<dim>     start;
@@ -148,7 +149,15 @@ namespace scarp
               std::advance(move.point, q - c.begin);
               local = walk_to_cell<dim>(c.cell, x, move.cell, move.reference);
               if (local)
-                moves.push_back(move);
+                {
+                  // A ghost cell: the point goes to the rank that owns it.
+                  move.destination = move.cell->is_locally_owned()
+                                       ? numbers::invalid_subdomain_id
+                                       : move.cell->subdomain_id();
+                  n_leaving_rank +=
+                    move.destination != numbers::invalid_subdomain_id;
+                  moves.push_back(move);
+                }
             }
         }
       if (!local)
@@ -159,28 +168,93 @@ namespace scarp
 
     template <int dim>
     void
-    PointMover<dim>::move_points(Particles::ParticleHandler<dim> &particles)
+    PointMover<dim>::move_points(Particles::ParticleHandler<dim> &particles,
+                                 const Triangulation<dim>        &triangulation,
+                                 const bool                       exchange,
+                                 const MPI_Comm                   communicator)
     {
       using Iterator =
         typename Particles::ParticleHandler<dim>::particle_iterator;
       std::vector<Iterator> leaving;
       leaving.reserve(moves.size());
+      // What a point that changes ranks takes along: its new cell, its
+      // location and reference location there, its id and properties.
+      std::map<unsigned int, std::vector<char>> outgoing;
+      const auto append = [](std::vector<char> &data, const auto &value) {
+        const char *bytes = reinterpret_cast<const char *>(&value);
+        data.insert(data.end(), bytes, bytes + sizeof(value));
+      };
       for (const Move &move : moves)
         {
           // Copies first: inserting may grow the pool's storage.
           const Point<dim>            x          = move.point->get_location();
           const types::particle_index id         = move.point->get_id();
           const auto                  properties = move.point->get_properties();
-          buffer.assign(properties.begin(), properties.end());
-          particles.insert_particle(
-            x, move.reference, id, move.cell, make_array_view(buffer));
+          if (move.destination == numbers::invalid_subdomain_id)
+            {
+              buffer.assign(properties.begin(), properties.end());
+              particles.insert_particle(
+                x, move.reference, id, move.cell, make_array_view(buffer));
+            }
+          else
+            {
+              std::vector<char> &data = outgoing[move.destination];
+              append(data, move.cell->id().template to_binary<dim>());
+              append(data, x);
+              append(data, move.reference);
+              append(data, id);
+              const std::size_t n = properties.size() * sizeof(double);
+              data.insert(data.end(),
+                          reinterpret_cast<const char *>(properties.data()),
+                          reinterpret_cast<const char *>(properties.data()) +
+                            n);
+            }
           leaving.push_back(move.point);
+        }
+      // As in the full sort: the points that stay on their rank are in
+      // their new cells first, then those received, by ascending source
+      // rank, each source's in its order.
+      if (exchange)
+        {
+          const unsigned int n_properties =
+            particles.n_properties_per_particle();
+          const std::map<unsigned int, std::vector<char>> incoming =
+            Utilities::MPI::some_to_some(communicator, outgoing);
+          for (const auto &source : incoming)
+            {
+              const char *data = source.second.data();
+              const char *end  = data + source.second.size();
+              const auto  take = [&data](auto &value) {
+                std::memcpy(&value, data, sizeof(value));
+                data += sizeof(value);
+              };
+              while (data < end)
+                {
+                  CellId::binary_type   cell_id;
+                  Point<dim>            x, reference;
+                  types::particle_index id;
+                  take(cell_id);
+                  take(x);
+                  take(reference);
+                  take(id);
+                  buffer.resize(n_properties);
+                  std::memcpy(buffer.data(),
+                              data,
+                              n_properties * sizeof(double));
+                  data += n_properties * sizeof(double);
+                  const typename Triangulation<dim>::active_cell_iterator cell =
+                    triangulation.create_cell_iterator(CellId(cell_id));
+                  particles.insert_particle(
+                    x, reference, id, cell, make_array_view(buffer));
+                }
+            }
         }
       // The same list in the same order as in the particle handler's sort,
       // so that the points left in a cell are reordered alike (and it
       // recounts the points, collectively).
       particles.remove_particles(leaving);
       n_last_moved = moves.size();
+      n_last_sent  = n_leaving_rank;
       moves.clear();
     }
 
@@ -188,25 +262,32 @@ namespace scarp
     template <int dim>
     bool
     PointMover<dim>::sort(Particles::ParticleHandler<dim> &particles,
+                          const Triangulation<dim>        &triangulation,
                           const std::vector<CellPoints>   &cells,
                           const std::vector<unsigned int> &handles,
                           const MPI_Comm                   communicator)
     {
       // 2: move here; 1: the points could move here, but their slots are
-      // to be put in order again; 0: a point leaves the rank or the mesh.
+      // to be put in order again; 0: a point leaves the mesh or cannot be
+      // followed. Twice that, plus one if no point leaves this rank: one
+      // reduction tells both.
       unsigned int verdict = find_new_cells(particles, cells, handles) ? 2 : 0;
       if (verdict == 2 &&
           double(n_moved_since_full_sort + moves.size()) >
             compaction_fraction * particles.n_locally_owned_particles())
         verdict = 1;
-      if (Utilities::MPI::min(verdict, communicator) == 2)
+      const unsigned int all =
+        Utilities::MPI::min(2 * verdict + (n_leaving_rank == 0 ? 1 : 0),
+                            communicator);
+      if (all >= 4)
         {
-          move_points(particles);
+          move_points(particles, triangulation, all == 4, communicator);
           n_moved_since_full_sort += n_last_moved;
           return true;
         }
       moves.clear();
       n_last_moved            = 0;
+      n_last_sent             = 0;
       n_moved_since_full_sort = 0;
       particles.sort_particles_into_subdomains_and_cells();
       return false;
@@ -235,7 +316,8 @@ namespace scarp
             c.end = own_handles.size();
             own_cells.push_back(c);
           }
-      return sort(particles, own_cells, own_handles, communicator);
+      return sort(
+        particles, triangulation, own_cells, own_handles, communicator);
     }
 
 

@@ -1143,6 +1143,7 @@ namespace scarp
         occupied_points.push_back(
           {occupied.cell, occupied.point_begin, occupied.point_end});
       point_mover.sort(particle_handler,
+                       grid.triangulation(),
                        occupied_points,
                        point_handle,
                        communicator);

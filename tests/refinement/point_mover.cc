@@ -15,8 +15,10 @@
 // Steps of three kinds:
 // - odd steps move only the points whose new place is in a locally owned
 //   cell: PointMover must then move them itself (on every rank count);
-// - even steps move every point: on one rank PointMover moves them, on
-//   several some leave their rank and the full sort must run instead;
+// - even steps move every point: on several ranks some leave their rank,
+//   and PointMover must hand them over itself (one exchange; the new
+//   cells' points in the full sort's order: those that stayed on the
+//   rank, then those received by ascending source rank);
 // - the last step pushes one point out of the mesh: the full sort runs (it
 //   drops the point) on every rank.
 // A third handler, sorted by a PointMover with the default compaction (the
@@ -130,9 +132,9 @@ namespace
     const std::string where = std::to_string(dim) + "D: ";
 
     // Where each point's cell level goes, over all steps.
-    unsigned int n_to_finer = 0, n_to_coarser = 0, n_moved = 0;
+    unsigned int n_to_finer = 0, n_to_coarser = 0, n_moved = 0, n_sent = 0;
     unsigned int n_local_steps = 0, n_full_steps = 0;
-    bool         same = true, odd_local = true;
+    bool         same = true, followed = true;
     // Without the compaction by the full sort (the test moves most points
     // every step; the runs of scarp a few in a thousand).
     PointMover<dim> mover(1e30);
@@ -180,11 +182,12 @@ namespace
         full.sort_particles_into_subdomains_and_cells();
         const bool local = mover.sort(moved, tria, MPI_COMM_WORLD);
         n_moved += mover.n_moved();
+        n_sent += mover.n_sent();
         n_compacting_full +=
           compacting.sort(compacted, tria, MPI_COMM_WORLD) ? 0 : 1;
         (local ? n_local_steps : n_full_steps) += 1;
-        if (step % 2 == 1 && step < n_steps)
-          odd_local = odd_local && local;
+        if (step < n_steps)
+          followed = followed && local;
         same = same &&
                cell_contents(tria, full) == cell_contents(tria, moved) &&
                cell_contents(tria, full) == cell_contents(tria, compacted);
@@ -201,19 +204,26 @@ namespace
           check(!local, where + "a point leaving the mesh takes the full sort");
       }
     n_moved      = Utilities::MPI::sum(n_moved, MPI_COMM_WORLD);
+    n_sent       = Utilities::MPI::sum(n_sent, MPI_COMM_WORLD);
     n_to_finer   = Utilities::MPI::sum(n_to_finer, MPI_COMM_WORLD);
     n_to_coarser = Utilities::MPI::sum(n_to_coarser, MPI_COMM_WORLD);
     out() << "  " << where << full.n_global_particles() << " points, "
-          << n_moved << " moved by PointMover, " << n_local_steps
-          << " steps moved by it and " << n_full_steps
-          << " by the full sort on rank 0; " << n_to_finer
+          << n_moved << " moved by PointMover (" << n_sent
+          << " to another rank), " << n_local_steps << " steps moved by it and "
+          << n_full_steps << " by the full sort on rank 0; " << n_to_finer
           << " moves into finer cells, " << n_to_coarser << " into coarser"
           << std::endl;
     check(same,
           where + "same points, order, reference locations and properties "
                   "in every cell as the full sort, bit for bit, every step "
                   "(with and without the compaction)");
-    check(odd_local, where + "points staying on their rank are moved here");
+    check(followed,
+          where + "PointMover moves the points itself in every step but the "
+                  "last, also those that change ranks");
+    if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      check(n_sent > 0, where + "points handed over to other ranks");
+    else
+      check(n_sent == 0, where + "no point handed over on one rank");
     check(n_compacting_full > 1,
           where + "the default compaction hands over to the full sort");
     check(n_moved > 0 && n_to_finer > 0 && n_to_coarser > 0,

@@ -13,9 +13,9 @@ namespace scarp
     using namespace dealii;
 
     /**
-     * @brief Sorts the points that left their cells into their new cells
-     * when they all stay on this rank, without the particle handler's full
-     * sort; otherwise calls it.
+     * @brief Sorts the points that left their cells into their new cells,
+     * also on other ranks, without the particle handler's full sort when
+     * every point can be followed; otherwise calls it.
      *
      * ParticleHandler::sort_particles_into_subdomains_and_cells() maps every
      * point to its cell's unit cell (a virtual call each), searches the
@@ -24,12 +24,16 @@ namespace scarp
      * (PropertyPool::sort_memory_slots): about a tenth of a refined Joss Bay
      * run. Here the reference locations are computed in place, the few
      * points that left find their cell by walking through face neighbours
-     * (into the child on their side where the neighbour is finer), and only
-     * they are moved: inserted into their new cells and removed from the
-     * old ones in the order the full sort uses, so every cell ends up with
-     * the same points in the same order and with the same reference
-     * locations, bit for bit (tests/refinement/point_mover.cc). Only the
-     * property slots of the moved points differ.
+     * (into the child on their side where the neighbour is finer, through
+     * ghost cells too), and only they are moved: inserted into their new
+     * cells, those whose new cell is a ghost cell sent to the rank that
+     * owns it (one exchange with the ranks that have any), and removed
+     * from the old cells, all in the order the full sort uses (on each
+     * rank: the points that stay on it, then those received by ascending
+     * source rank). So every cell ends up with the same points in the same
+     * order and with the same reference locations, bit for bit
+     * (tests/refinement/point_mover.cc). Only the property slots of the
+     * moved points differ.
      *
      * Meshes of axis-aligned boxes only (MappingCartesian).
      */
@@ -60,8 +64,8 @@ namespace scarp
        * cell iteration (the particle handler's sort works through them in
        * that order), with their points' @p handles (a caller that keeps
        * them, as MpmTransfer does, spares the walk through the handler's
-       * cells). If every point stays in the locally owned cells and in the
-       * mesh on every rank, the points are moved here; otherwise, or when
+       * cells). If every point is found in a locally owned or ghost cell
+       * on every rank, the points are moved here; otherwise, or when
        * the points moved here since the last full sort exceed the
        * compaction fraction of the points of a rank (their property slots
        * scatter, which slows the sweeps over the points), the particle
@@ -70,6 +74,7 @@ namespace scarp
        */
       bool
       sort(Particles::ParticleHandler<dim> &particles,
+           const Triangulation<dim>        &triangulation,
            const std::vector<CellPoints>   &cells,
            const std::vector<unsigned int> &handles,
            const MPI_Comm                   communicator);
@@ -89,6 +94,13 @@ namespace scarp
         return n_last_moved;
       }
 
+      /// Of those, the points sent to other ranks.
+      std::size_t
+      n_sent() const
+      {
+        return n_last_sent;
+      }
+
     private:
       /// Set the reference locations of the points that stay and find the
       /// cells of those that left; false if one leaves this rank's cells or
@@ -99,8 +111,13 @@ namespace scarp
                      const std::vector<unsigned int> &handles);
 
       /// Move the points find_new_cells() found.
+      /// Move the points of @p moves; with @p exchange (collective) hand
+      /// those bound for other ranks over to them.
       void
-      move_points(Particles::ParticleHandler<dim> &particles);
+      move_points(Particles::ParticleHandler<dim> &particles,
+                  const Triangulation<dim>        &triangulation,
+                  const bool                       exchange,
+                  const MPI_Comm                   communicator);
 
       /// A point leaving its cell.
       struct Move
@@ -108,6 +125,9 @@ namespace scarp
         typename Particles::ParticleHandler<dim>::particle_iterator point;
         typename Triangulation<dim>::active_cell_iterator           cell;
         Point<dim>                                                  reference;
+        /// The rank the point goes to, or invalid_subdomain_id if it
+        /// stays on this one.
+        types::subdomain_id destination;
       };
       std::vector<Move> moves;
       /// The properties of one moving point (the pool may grow while it is
@@ -115,6 +135,9 @@ namespace scarp
       std::vector<double> buffer;
       double              compaction_fraction;
       std::size_t         n_last_moved = 0;
+      /// Points of @p moves that go to another rank.
+      std::size_t n_leaving_rank = 0;
+      std::size_t n_last_sent    = 0;
       /// Points moved here since the last full sort.
       std::size_t n_moved_since_full_sort = 0;
       /// The cells and handles of sort(particles, communicator).
