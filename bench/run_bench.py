@@ -2,7 +2,7 @@
 """Run benchmark scenes of scarp and print their speed (doc/performance.md).
 
     bench/run_bench.py [--scarp [LABEL=]build/scarp ...] [--ranks 1[,2]]
-                       [--repeat 3] [--suite joss|flow|column|column3d|all]
+                       [--repeat 3] [--suite joss|flow|column|column3d|debris|all]
                        [--sizes 25,50,100] [--sizes3d 8,12] [--shapes Q1,GIMP]
                        [--csv bench.csv] [--work DIR] [SCENE.prm ...]
 
@@ -39,7 +39,13 @@ other jobs, repeat and take medians (--repeat).
 Suites: "joss" is bench/scenes/joss_bay_L1_short.prm (the refined Joss Bay
 scene, GIMP, chalk with damage, cut short); "flow" is
 bench/scenes/granular_collapse_flow.prm (a granular column collapse, GIMP,
-cut short while it flows: points change cells every step); "column" is the 2D elastic
+cut short while it flows: points change cells every step); "debris" is
+bench/scenes/joss_bay_L2_debris_segment.prm, 2 232 steps of the flowing
+level-2 Joss Bay debris (GIMP, chalk, the non-local average, refinement,
+points changing cells and ranks), resumed each run from a copy of the
+checkpoint that bench/scenes/joss_bay_L2_debris_checkpoint.prm writes
+(--debris-checkpoint; only this run's steps are counted; not part of
+"all"); "column" is the 2D elastic
 column under gravity (Q1 and GIMP, FLIP/MUSL, 2x2 points per cell) at
 three sizes (--sizes; 250 adds 1e6 points), generated into --work with a
 fixed number of about 200 steps; "column3d" the same column in 3D
@@ -50,6 +56,7 @@ import csv
 import json
 import os
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -159,19 +166,44 @@ def output_directory(prm):
     return out
 
 
-def point_steps(stats_path):
-    total, last_step = 0.0, 0
+def point_steps(stats_path, after_step=0):
+    """Point-steps of the statistics rows past step @after_step (a resumed
+    run's file starts with the rows of the run it resumes)."""
+    total, last_step = 0.0, after_step
     with open(stats_path) as f:
         for row in csv.DictReader(f):
             step = int(float(row["step"]))
+            if step <= after_step:
+                continue
             total += (step - last_step) * float(row["material_points"])
             last_step = step
     return total
 
 
-def run_once(scarp, prm, ranks, run_dir):
+def checkpoint_step(manifest_path):
+    with open(manifest_path, errors="replace") as f:
+        for line in f:
+            if line.startswith("step "):
+                return int(line.split()[1])
+    sys.exit("run_bench: no step in %s" % manifest_path)
+
+
+def run_once(scarp, prm, ranks, run_dir, resume_from=None):
+    """Run @prm in @run_dir; with @resume_from (an output directory holding
+    a checkpoint), resume a fresh copy of it, and count only the steps of
+    this run."""
     os.makedirs(run_dir, exist_ok=True)
     cmd = [os.path.abspath(scarp), os.path.abspath(prm)]
+    start_step = 0
+    if resume_from:
+        copy = os.path.join(run_dir, output_directory(prm))
+        shutil.rmtree(copy, ignore_errors=True)
+        shutil.copytree(resume_from, copy)
+        # The step of the checkpoint (its manifest's "step" line; the run
+        # that wrote it may have gone on).
+        start_step = checkpoint_step(os.path.join(copy, "checkpoint",
+                                                  "manifest"))
+        cmd = [cmd[0], "--resume", output_directory(prm), cmd[1]]
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + (
             ["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
@@ -195,11 +227,11 @@ def run_once(scarp, prm, ranks, run_dir):
     out = os.path.join(run_dir, output_directory(prm) or ".")
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
-    ps = point_steps(os.path.join(out, "statistics.csv"))
+    ps = point_steps(os.path.join(out, "statistics.csv"), start_step)
     wall = summary["wall_time"]
     row = {"points": summary["material_points"],
            "cells": summary.get("cells", 0),
-           "steps": summary["steps"],
+           "steps": summary["steps"] - start_step,
            "point_steps": ps,
            "wall_s": wall,
            "cpu_s": cpu,
@@ -231,9 +263,13 @@ def main():
                     "efficiency of each against the first is printed)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--suite",
-                    choices=["joss", "flow", "column", "column3d", "all",
-                             "none"],
+                    choices=["joss", "flow", "column", "column3d", "debris",
+                             "all", "none"],
                     default=None)
+    ap.add_argument("--debris-checkpoint",
+                    default="output/bench/joss_bay_L2_debris",
+                    help="output directory with the checkpoint that the "
+                    "debris suite resumes (a copy per run)")
     ap.add_argument("--sizes", default="25,50,100",
                     help="column cells across (2D: 16 n^2 points; "
                     "25,50,100,250 spans 1e4 to 1e6 points)")
@@ -252,6 +288,7 @@ def main():
 
     scenes = [(os.path.splitext(os.path.basename(s))[0], s)
               for s in args.scenes]
+    resume = {}
     suite = args.suite or ("none" if scenes else "all")
     if suite in ("joss", "all"):
         scenes.append(("joss_bay_L1_short",
@@ -259,6 +296,18 @@ def main():
     if suite in ("flow", "all"):
         scenes.append(("granular_collapse_flow",
                        "bench/scenes/granular_collapse_flow.prm"))
+    if suite == "debris":
+        # Not in "all": it needs the checkpoint of
+        # bench/scenes/joss_bay_L2_debris_checkpoint.prm (about 5 min).
+        checkpoint = os.path.abspath(args.debris_checkpoint)
+        if not os.path.isdir(os.path.join(checkpoint, "checkpoint")):
+            sys.exit("run_bench: no checkpoint in %s; write it first with\n"
+                     "  mpirun -np 2 build/scarp "
+                     "bench/scenes/joss_bay_L2_debris_checkpoint.prm"
+                     % checkpoint)
+        scenes.append(("joss_bay_L2_debris_segment",
+                       "bench/scenes/joss_bay_L2_debris_segment.prm"))
+        resume["joss_bay_L2_debris_segment"] = checkpoint
     if suite in ("column", "all"):
         for shape in shapes:
             for n_x in (int(n) for n in args.sizes.split(",")):
@@ -284,7 +333,8 @@ def main():
                     for label, binary in binaries:
                         run_dir = os.path.join(args.work, "%s_%s_np%d_%d" % (
                             name, label.replace("/", "_"), ranks, r))
-                        row = run_once(binary, prm, ranks, run_dir)
+                        row = run_once(binary, prm, ranks, run_dir,
+                                       resume.get(name))
                         row.update(label=label, scene=name, ranks=ranks,
                                    repeat=r)
                         writer.writerow(row)
