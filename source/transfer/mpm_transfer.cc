@@ -882,17 +882,12 @@ namespace scarp
               if (update_positions_and_velocities)
                 {
                   Tensor<1, dim> v_grid, dv;
-                  Tensor<2, dim> grad_v;
                   for (unsigned int e = e0; e < e1; ++e)
                     {
                       const unsigned int i = shape_node[e];
                       v_grid += shape_value[e] * v_new[i];
                       dv += shape_value[e] * (v_new[i] - v_old[i]);
                     }
-                  for (unsigned int e = e0; e < e1; ++e)
-                    if (!empty[shape_node[e]])
-                      grad_v += outer_product(v_new[shape_node[e]] - v_grid,
-                                              shape_gradient[e]);
                   Tensor<1, dim> v;
                   // The FLIP update, v_p + S (v_new - v_start): the one the
                   // energy balance follows (it passes on the grid's
@@ -901,6 +896,13 @@ namespace scarp
                     layout.get_vector(p, layout.velocity) + dv;
                   if (apic)
                     {
+                      // The affine matrix: the gradient of the grid
+                      // velocity at the point (APIC only).
+                      Tensor<2, dim> grad_v;
+                      for (unsigned int e = e0; e < e1; ++e)
+                        if (!empty[shape_node[e]])
+                          grad_v += outer_product(v_new[shape_node[e]] - v_grid,
+                                                  shape_gradient[e]);
                       v = v_grid;
                       layout.set_matrix(p, layout.affine, grad_v);
                     }
