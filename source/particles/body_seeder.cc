@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <scarp/particles/body_seeder.h>
+#include <scarp/particles/pool_growth.h>
 
 namespace scarp
 {
@@ -8,14 +9,13 @@ namespace scarp
   {
     template <int dim>
     types::particle_index
-    BodySeeder<dim>::seed(
-      const parallel::distributed::Triangulation<dim> &tria,
-      Particles::ParticleHandler<dim>                 &handler,
-      const BoundingBox<dim>                          &region_box,
-      const std::function<bool(const Point<dim> &)>   &inside,
-      const unsigned int                               per_direction,
-      const types::particle_index                      first_id,
-      const Initializer                               &initialize)
+    BodySeeder<dim>::seed(const parallel::distributed::Triangulation<dim> &tria,
+                          Particles::ParticleHandler<dim> &handler,
+                          const BoundingBox<dim>          &region_box,
+                          const std::function<bool(const Point<dim> &)> &inside,
+                          const unsigned int          per_direction,
+                          const types::particle_index first_id,
+                          const Initializer          &initialize)
     {
       // Reference positions of the lattice inside one cell.
       std::vector<Point<dim>> lattice;
@@ -36,8 +36,8 @@ namespace scarp
       struct NewPoint
       {
         typename Triangulation<dim>::active_cell_iterator cell;
-        Point<dim>                                         x, xi;
-        double                                             volume;
+        Point<dim>                                        x, xi;
+        double                                            volume;
       };
       std::vector<NewPoint> points;
       for (const auto &cell : tria.active_cell_iterators())
@@ -70,6 +70,7 @@ namespace scarp
         offset = 0;
 
       std::vector<double> properties(handler.n_properties_per_particle());
+      PoolGrowth::reserve(handler, points.size());
       for (types::particle_index k = 0; k < n_local; ++k)
         {
           std::fill(properties.begin(), properties.end(), 0.);

@@ -4,6 +4,7 @@
 #include <deal.II/base/array_view.h>
 
 #include <scarp/particles/point_mover.h>
+#include <scarp/particles/pool_growth.h>
 
 #include <cstring>
 #include <iterator>
@@ -184,6 +185,9 @@ namespace scarp
         const char *bytes = reinterpret_cast<const char *>(&value);
         data.insert(data.end(), bytes, bytes + sizeof(value));
       };
+      // The points of this rank go in before the cells they leave free
+      // their slots: room for them first.
+      PoolGrowth::reserve(particles, moves.size() - n_leaving_rank);
       for (const Move &move : moves)
         {
           // Copies first: inserting may grow the pool's storage.
@@ -220,6 +224,13 @@ namespace scarp
             particles.n_properties_per_particle();
           const std::map<unsigned int, std::vector<char>> incoming =
             Utilities::MPI::some_to_some(communicator, outgoing);
+          const std::size_t record_size =
+            sizeof(CellId::binary_type) + 2 * sizeof(Point<dim>) +
+            sizeof(types::particle_index) + n_properties * sizeof(double);
+          std::size_t n_incoming = 0;
+          for (const auto &source : incoming)
+            n_incoming += source.second.size() / record_size;
+          PoolGrowth::reserve(particles, n_incoming);
           for (const auto &source : incoming)
             {
               const char *data = source.second.data();

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <scarp/particles/point_splitter.h>
+#include <scarp/particles/pool_growth.h>
 
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,7 @@ namespace scarp
       if (Utilities::MPI::this_mpi_process(communicator) == 0)
         first = 0;
       types::particle_index id = max_id + 1 + first;
+      PoolGrowth::reserve(particles, children.size());
       for (const Child &child : children)
         {
           // The reference location in the parent's cell (sorting moves a

@@ -10,9 +10,9 @@ namespace scarp
                                const std::vector<std::string> &names)
     {
       unsigned int next = 0;
-      mass                 = next++;
-      reference_volume     = next++;
-      velocity             = next;
+      mass              = next++;
+      reference_volume  = next++;
+      velocity          = next;
       next += dim;
       deformation_gradient = next;
       next += dim * dim;
