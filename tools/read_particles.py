@@ -21,6 +21,8 @@ def _decode(text, kind, header_type):
     fmt = {"UInt32": "I", "UInt64": "Q"}[header_type]
     size = struct.calcsize(fmt)
     text = "".join(text.split())
+    if not text:  # the arrays of a rank without points are empty
+        return []
     # The header is base64 of its own; its length follows from the count.
     first = base64.b64decode(text[:12])
     n_blocks = struct.unpack("<" + fmt, first[:size])[0]
@@ -51,17 +53,19 @@ def read_vtu(filename):
         if 'format="ascii"' in attrs:
             continue  # the TIME field
         values = _decode(body, kind, header_type)
+        # A file may hold several pieces (scarp writes the points of a rank
+        # a chunk at a time): their arrays are concatenated.
         if name is None:  # the points
-            result["x"] = values[0::3]
-            result["y"] = values[1::3]
-            result["z"] = values[2::3]
+            for c, axis in enumerate("xyz"):
+                result.setdefault(axis, []).extend(values[c::3])
         elif name.group(1) in ("connectivity", "offsets", "types"):
             continue
         elif ncomp == 1:
-            result[name.group(1)] = values
+            result.setdefault(name.group(1), []).extend(values)
         else:
             for c in range(ncomp):
-                result["%s_%d" % (name.group(1), c)] = values[c::ncomp]
+                result.setdefault("%s_%d" % (name.group(1), c),
+                                  []).extend(values[c::ncomp])
     return result
 
 

@@ -1,7 +1,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/numerics/data_out.h>
-#include <deal.II/particles/data_out.h>
 
+#include <scarp/postprocess/particle_vtu_writer.h>
 #include <scarp/postprocess/vtu_output.h>
 
 #include <cstdio>
@@ -60,17 +60,16 @@ namespace scarp
       const double                           time,
       const unsigned int                     index)
     {
-      Particles::DataOut<dim> data_out;
-      data_out.build_patches(particles,
-                             layout.names(),
-                             layout.interpretations());
-      DataOutBase::VtkFlags flags;
+      // A chunk of points at a time (postprocess/particle_vtu_writer.h):
+      // Particles::DataOut would hold a patch per point of the rank.
+      const ParticleVtuWriter<dim> writer(layout.names(),
+                                          layout.interpretations());
+      DataOutBase::VtkFlags        flags;
       flags.time = time;
       flags.compression_level =
         DataOutBase::VtkFlags::ZlibCompressionLevel::best_speed;
-      data_out.set_flags(flags);
-      const std::string name = data_out.write_vtu_with_pvtu_record(
-        directory + "/", "particles", index, communicator, 5, 0);
+      const std::string name = writer.write(
+        particles, directory + "/", "particles", index, flags, communicator);
       particle_records.emplace_back(time, name);
       write_pvd("particles", particle_records);
     }
