@@ -63,7 +63,6 @@ Both run single-threaded on one process: scarp without mpirun (one rank,
 one thread), CB-Geo with OMP_NUM_THREADS=1 and -p 1. Nothing is asserted.
 """
 import argparse
-import base64
 import csv
 import glob
 import json
@@ -73,11 +72,9 @@ import re
 import resource
 import shutil
 import statistics
-import struct
 import subprocess
 import sys
 import time
-import zlib
 
 WIDTH, HEIGHT, EMPTY_LAYERS = 2.0, 4.0, 4
 RHO, NU, G = 1000.0, 0.3, 9.81
@@ -274,52 +271,17 @@ def run_timed(cmd, cwd, log_path, env=None):
     return wall, cpu
 
 
-def vtu_arrays(path, names):
-    """The named DataArrays of a deal.II VTU file (binary, zlib-compressed
-    or not) as lists of floats."""
-    with open(path) as f:
-        text = f.read()
-    compressed = "vtkZLibDataCompressor" in text
-    out = {}
-    for m in re.finditer(r'<DataArray([^>]*)>(.*?)</DataArray>', text,
-                         re.S):
-        attrs, body = m.group(1), m.group(2).strip()
-        name = re.search(r'Name="([^"]*)"', attrs)
-        if not name or name.group(1) not in names:
-            continue
-        kind = re.search(r'type="([^"]*)"', attrs).group(1)
-        fmt = {"Float32": "f", "Float64": "d"}[kind]
-        if 'format="ascii"' in attrs:
-            values = [float(v) for v in body.split()]
-        elif compressed:
-            # Header: number of blocks, block size, size of the last block,
-            # compressed size of each block (uint32), base64 on its own.
-            nblocks = struct.unpack("<I", base64.b64decode(body[:8])[:4])[0]
-            hlen = 4 * math.ceil(4 * (3 + nblocks) / 3)
-            header = struct.unpack("<%dI" % (3 + nblocks),
-                                   base64.b64decode(body[:hlen]))
-            data = base64.b64decode(body[hlen:])
-            raw, pos = b"", 0
-            for size in header[3:]:
-                raw += zlib.decompress(data[pos:pos + size])
-                pos += size
-            values = list(struct.unpack("<%d%s" % (len(raw) // struct.calcsize(
-                fmt), fmt), raw))
-        else:
-            raw = base64.b64decode(body)[4:]
-            values = list(struct.unpack("<%d%s" % (len(raw) // struct.calcsize(
-                fmt), fmt), raw))
-        out[name.group(1)] = values
-    return out
-
-
 def scarp_bottom_stress(out_dir, col):
     """Mean stress_yy of the points whose reference height is below h/2,
     from the last particle output."""
-    files = sorted(glob.glob(os.path.join(out_dir, "particles_*.0.vtu")))
-    a = vtu_arrays(files[-1], ("reference_position", "stress_yy"))
-    ref_y = a["reference_position"][1::3]
-    s = [syy for y, syy in zip(ref_y, a["stress_yy"]) if y < 0.5 * col.h]
+    # tools/read_particles.py: every piece of every rank's file.
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(
+        __file__)), "..", "..", "tools"))
+    from read_particles import read_particles
+    files = sorted(glob.glob(os.path.join(out_dir, "particles_*.pvtu")))
+    a = read_particles(files[-1])
+    s = [syy for y, syy in zip(a["reference_position_1"], a["stress_yy"])
+         if y < 0.5 * col.h]
     return sum(s) / len(s), len(s)
 
 
