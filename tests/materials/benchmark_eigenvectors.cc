@@ -1,0 +1,102 @@
+// Cost and accuracy of the 3x3 symmetric eigen-decomposition behind the 3D
+// constitutive update (doc/performance.md, "What is left"): deal.II's three
+// eigenvectors() methods and scarp's spectral_decomposition() (which takes
+// deal.II's QL method for a general 3D tensor), on 200 000 stress-like
+// tensors (an isotropic -100 kPa plus a deviator of up to 1 kPa; every fourth
+// nearly isotropic, deviator 1e-3 Pa, where eigenvalues nearly repeat).
+// Prints nanoseconds per decomposition (the decomposition alone, median of
+// 5 passes) and the largest |V diag(l) V^T - A| / |A|; asserts nothing.
+//
+// Usage: test_materials_benchmark_eigenvectors
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <scarp/materials/spectral_decomposition.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <random>
+#include <vector>
+
+using namespace dealii;
+
+namespace
+{
+  using Decomposition = std::array<std::pair<double, Tensor<1, 3>>, 3>;
+
+  void
+  measure(const std::string                        &name,
+          const std::vector<SymmetricTensor<2, 3>> &tensors,
+          const std::function<Decomposition(const SymmetricTensor<2, 3> &)>
+            &decompose)
+  {
+    std::vector<Decomposition> results(tensors.size());
+    std::vector<double>        times;
+    for (unsigned int pass = 0; pass < 5; ++pass)
+      {
+        const auto start = std::chrono::steady_clock::now();
+        for (std::size_t k = 0; k < tensors.size(); ++k)
+          results[k] = decompose(tensors[k]);
+        times.push_back(std::chrono::duration<double, std::nano>(
+                          std::chrono::steady_clock::now() - start)
+                          .count() /
+                        tensors.size());
+      }
+    std::sort(times.begin(), times.end());
+    double worst = 0;
+    for (std::size_t k = 0; k < tensors.size(); ++k)
+      {
+        SymmetricTensor<2, 3> B;
+        for (const auto &pair : results[k])
+          B += pair.first * symmetrize(outer_product(pair.second, pair.second));
+        worst = std::max(worst, (B - tensors[k]).norm() / tensors[k].norm());
+      }
+    std::cout << "  " << std::left << std::setw(34) << name << std::right
+              << std::setw(8) << std::fixed << std::setprecision(1) << times[2]
+              << " ns   worst reconstruction " << std::scientific
+              << std::setprecision(2) << worst << std::endl;
+  }
+} // namespace
+
+int
+main()
+{
+  std::mt19937                           random(1);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  std::vector<SymmetricTensor<2, 3>>     tensors(200000);
+  for (std::size_t k = 0; k < tensors.size(); ++k)
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        tensors[k][i][j] =
+          (i == j ? -1e5 : 0.) + 1e3 * u(random) * (k % 4 == 0 ? 1e-6 : 1.);
+
+  std::cout << "3x3 symmetric eigen-decomposition, " << tensors.size()
+            << " stress-like tensors:" << std::endl;
+  const auto with = [](const SymmetricTensorEigenvectorMethod method) {
+    return [method](const SymmetricTensor<2, 3> &A) {
+      return eigenvectors(A, method);
+    };
+  };
+  measure("deal.II ql_implicit_shifts",
+          tensors,
+          with(SymmetricTensorEigenvectorMethod::ql_implicit_shifts));
+  measure("deal.II hybrid",
+          tensors,
+          with(SymmetricTensorEigenvectorMethod::hybrid));
+  measure("deal.II jacobi",
+          tensors,
+          with(SymmetricTensorEigenvectorMethod::jacobi));
+  measure("scarp spectral_decomposition",
+          tensors,
+          [](const SymmetricTensor<2, 3> &A) {
+            const auto    s = scarp::materials::spectral_decomposition(A);
+            Decomposition d;
+            for (unsigned int i = 0; i < 3; ++i)
+              d[i] = {s.values[i], s.vectors[i]};
+            return d;
+          });
+  return 0;
+}
