@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <scarp/base/rank_offset.h>
 #include <scarp/particles/body_seeder.h>
 #include <scarp/particles/pool_growth.h>
 
@@ -59,15 +60,8 @@ namespace scarp
           }
 
       const types::particle_index n_local = points.size();
-      types::particle_index       offset  = 0;
-      MPI_Exscan(&n_local,
-                 &offset,
-                 1,
-                 Utilities::MPI::mpi_type_id_for_type<types::particle_index>,
-                 MPI_SUM,
-                 tria.get_communicator());
-      if (Utilities::MPI::this_mpi_process(tria.get_communicator()) == 0)
-        offset = 0;
+      const types::particle_index offset =
+        rank_offset(n_local, tria.get_communicator());
 
       std::vector<double> properties(handler.n_properties_per_particle());
       PoolGrowth::reserve(handler, points.size());

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <scarp/base/rank_offset.h>
 #include <scarp/particles/point_splitter.h>
 #include <scarp/particles/pool_growth.h>
 
@@ -77,13 +78,9 @@ namespace scarp
 
       // Ids: ranks take consecutive ranges above the largest id in use.
       max_id = Utilities::MPI::max(max_id, communicator);
-      const unsigned long long n_local = children.size();
-      unsigned long long       first   = 0;
-      MPI_Exscan(
-        &n_local, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, communicator);
-      if (Utilities::MPI::this_mpi_process(communicator) == 0)
-        first = 0;
-      types::particle_index id = max_id + 1 + first;
+      const types::particle_index n_local = children.size();
+      const types::particle_index first   = rank_offset(n_local, communicator);
+      types::particle_index       id      = max_id + 1 + first;
       PoolGrowth::reserve(particles, children.size());
       for (const Child &child : children)
         {

@@ -16,6 +16,7 @@
 #include <deal.II/particles/data_out.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <scarp/base/rank_offset.h>
 #include <scarp/postprocess/particle_vtu_writer.h>
 
 #include <filesystem>
@@ -64,17 +65,8 @@ namespace
           (!only_lower_half || cell->center()[1] < 0.5))
         for (const Point<dim> &xi : lattice)
           places.emplace_back(cell, xi);
-    const types::particle_index n_local = places.size();
-    types::particle_index       first   = 0;
-    MPI_Exscan(&n_local,
-               &first,
-               1,
-               Utilities::MPI::mpi_type_id_for_type<types::particle_index>,
-               MPI_SUM,
-               comm);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      first = 0;
-    std::vector<double> properties(names.size());
+    const types::particle_index first = scarp::rank_offset(places.size(), comm);
+    std::vector<double>         properties(names.size());
     for (unsigned int k = 0; k < places.size(); ++k)
       {
         const types::particle_index id = first + k;
