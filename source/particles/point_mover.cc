@@ -179,7 +179,12 @@ namespace scarp
       std::vector<Iterator> leaving;
       leaving.reserve(moves.size());
       // What a point that changes ranks takes along: its new cell, its
-      // location and reference location there, its id and properties.
+      // location and reference location there, its id and properties,
+      // one record of this size each (packed and read below in this order).
+      const unsigned int n_properties = particles.n_properties_per_particle();
+      const std::size_t  record_size =
+        sizeof(CellId::binary_type) + 2 * sizeof(Point<dim>) +
+        sizeof(types::particle_index) + n_properties * sizeof(double);
       std::map<unsigned int, std::vector<char>> outgoing;
       const auto append = [](std::vector<char> &data, const auto &value) {
         const char *bytes = reinterpret_cast<const char *>(&value);
@@ -220,13 +225,8 @@ namespace scarp
       // rank, each source's in its order.
       if (exchange)
         {
-          const unsigned int n_properties =
-            particles.n_properties_per_particle();
           const std::map<unsigned int, std::vector<char>> incoming =
             Utilities::MPI::some_to_some(communicator, outgoing);
-          const std::size_t record_size =
-            sizeof(CellId::binary_type) + 2 * sizeof(Point<dim>) +
-            sizeof(types::particle_index) + n_properties * sizeof(double);
           std::size_t n_incoming = 0;
           for (const auto &source : incoming)
             n_incoming += source.second.size() / record_size;
