@@ -1156,9 +1156,11 @@ namespace scarp
     void
     MpmTransfer<dim>::find_occupied_cells()
     {
-      // The occupied cells, in order, with their points.
-      previous_cells.swap(occupied_cells);
-      occupied_cells.clear();
+      // The occupied cells, in order, with their points. The list is
+      // rewritten in place: an entry whose cell is the one it held before
+      // keeps its nodes, so no copy of the step before's list is needed.
+      bool         same_cells = node_arrays_valid;
+      unsigned int n_occupied = 0;
       point_handle.clear();
       point_properties.clear();
       auto &pool = particle_handler.get_property_pool();
@@ -1168,16 +1170,18 @@ namespace scarp
             const auto particles = particle_handler.particles_in_cell(cell);
             if (particles.begin() == particles.end())
               continue;
-            OccupiedCell occupied;
-            occupied.cell = cell;
+            if (n_occupied == occupied_cells.size())
+              {
+                occupied_cells.emplace_back();
+                same_cells = false;
+              }
+            OccupiedCell &occupied = occupied_cells[n_occupied++];
+            same_cells             = same_cells && occupied.cell == cell;
+            occupied.cell          = cell;
             // Cells are axis-aligned squares (cubes): the edge is the
             // distance of the first two vertices.
             occupied.x0          = cell->vertex(0);
             occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
-            occupied.patch       = nullptr;
-            occupied.regular     = false;
-            occupied.node_begin  = 0;
-            occupied.n_nodes     = 0;
             occupied.point_begin = point_handle.size();
             for (const auto &particle : particles)
               {
@@ -1186,29 +1190,14 @@ namespace scarp
                 point_properties.push_back(pool.get_properties(handle).data());
               }
             occupied.point_end = point_handle.size();
-            occupied_cells.push_back(occupied);
           }
+      same_cells = same_cells && n_occupied == occupied_cells.size();
+      occupied_cells.resize(n_occupied);
 
       // Their nodes depend on the cells only: most steps occupy the same
       // cells as the step before (same mesh), and keep the node arrays.
-      bool same_cells =
-        node_arrays_valid && previous_cells.size() == occupied_cells.size();
-      for (unsigned int c = 0; same_cells && c < occupied_cells.size(); ++c)
-        same_cells = previous_cells[c].cell == occupied_cells[c].cell;
       if (same_cells)
-        {
-          for (unsigned int c = 0; c < occupied_cells.size(); ++c)
-            {
-              occupied_cells[c].patch   = previous_cells[c].patch;
-              occupied_cells[c].regular = previous_cells[c].regular;
-              std::copy(&previous_cells[c].lattice[0][0],
-                        &previous_cells[c].lattice[0][0] + 4 * dim,
-                        &occupied_cells[c].lattice[0][0]);
-              occupied_cells[c].node_begin = previous_cells[c].node_begin;
-              occupied_cells[c].n_nodes    = previous_cells[c].n_nodes;
-            }
-          return;
-        }
+        return;
       node_local.clear();
       node_dof.clear();
       node_position.clear();
@@ -1243,6 +1232,8 @@ namespace scarp
             }
           else
             {
+              occupied.patch   = nullptr;
+              occupied.regular = false;
               occupied.cell->get_dof_indices(dofs);
               for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
                 {

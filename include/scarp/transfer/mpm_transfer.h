@@ -262,7 +262,7 @@ namespace scarp
         double     h;
         /// GIMP: the cell's patch (GimpPatches keeps it in place until its
         /// next reinit); Q1: nullptr.
-        const typename GimpPatches<dim>::Patch *patch;
+        const typename GimpPatches<dim>::Patch *patch = nullptr;
         /// GIMP on a regular patch: its lattice, copied here so that the
         /// shape functions of the cell's points read no patch memory.
         bool   regular         = false;
@@ -276,10 +276,9 @@ namespace scarp
         unsigned int point_begin, point_end;
       };
       std::vector<OccupiedCell> occupied_cells;
-      /// Those of the step before, and whether their node arrays still hold
-      /// (until the next setup()).
-      std::vector<OccupiedCell> previous_cells;
-      bool                      node_arrays_valid = false;
+      /// Whether the node arrays of occupied_cells still hold (until the
+      /// next setup()).
+      bool node_arrays_valid = false;
       /// Nodes of the occupied cells: index in the local storage of the
       /// grid vectors (local_element()), global dof, position.
       std::vector<unsigned int>            node_local;
