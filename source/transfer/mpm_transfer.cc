@@ -330,8 +330,20 @@ namespace scarp
                 }
               else
                 {
-                  shape_at(nullptr, xi, x, h, 0., value, gradient);
-                  n_entries += keep_nonzero(value, gradient, n_entries);
+                  // Q1: straight into the arrays, with keep_nonzero()'s
+                  // test (a point on the far corner of its cell has a node
+                  // of zero value and gradient).
+                  Q1Shape<dim> q1;
+                  q1.evaluate(xi, h);
+                  for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
+                    if (q1.value[i] != 0. ||
+                        q1.gradient[i].norm_square() != 0.)
+                      {
+                        shape_node[n_entries]     = i;
+                        shape_value[n_entries]    = q1.value[i];
+                        shape_gradient[n_entries] = q1.gradient[i];
+                        ++n_entries;
+                      }
                 }
               shape_begin[k + 1] = n_entries;
             }
