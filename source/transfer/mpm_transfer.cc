@@ -136,7 +136,8 @@ namespace scarp
                      grid.constraints(),
                      *mass.get_partitioner());
       occupied_cells.clear();
-      node_arrays_valid = false;
+      node_arrays_valid      = false;
+      occupied_cells_current = false;
       compute_node_cutoffs();
       setup_constraints();
     }
@@ -336,8 +337,7 @@ namespace scarp
                   Q1Shape<dim> q1;
                   q1.evaluate(xi, h);
                   for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-                    if (q1.value[i] != 0. ||
-                        q1.gradient[i].norm_square() != 0.)
+                    if (q1.value[i] != 0. || q1.gradient[i].norm_square() != 0.)
                       {
                         shape_node[n_entries]     = i;
                         shape_value[n_entries]    = q1.value[i];
@@ -1152,6 +1152,7 @@ namespace scarp
     void
     MpmTransfer<dim>::sort_points(const MPI_Comm communicator)
     {
+      occupied_cells_current = false;
       occupied_points.clear();
       for (const OccupiedCell &occupied : occupied_cells)
         occupied_points.push_back(
@@ -1168,6 +1169,13 @@ namespace scarp
     void
     MpmTransfer<dim>::find_occupied_cells()
     {
+      // No point changed cells in the last step (no sort_points() since the
+      // list was made), nor did the mesh change (no setup()): the same
+      // cells hold the same points in the same slots. The count guards
+      // against a change of the points that bypassed both.
+      if (occupied_cells_current &&
+          particle_handler.n_locally_owned_particles() == point_handle.size())
+        return;
       // The occupied cells, in order, with their points. The list is
       // rewritten in place: an entry whose cell is the one it held before
       // keeps its nodes, so no copy of the step before's list is needed.
@@ -1205,6 +1213,7 @@ namespace scarp
           }
       same_cells = same_cells && n_occupied == occupied_cells.size();
       occupied_cells.resize(n_occupied);
+      occupied_cells_current = true;
 
       // Their nodes depend on the cells only: most steps occupy the same
       // cells as the step before (same mesh), and keep the node arrays.

@@ -279,6 +279,11 @@ namespace scarp
       /// Whether the node arrays of occupied_cells still hold (until the
       /// next setup()).
       bool node_arrays_valid = false;
+      /// Whether occupied_cells and the point arrays are those of the
+      /// points as they are now: from find_occupied_cells() until the next
+      /// sort_points() or setup() (a step in which no point changed cells
+      /// only updates reference locations, and keeps them).
+      bool occupied_cells_current = false;
       /// Nodes of the occupied cells: index in the local storage of the
       /// grid vectors (local_element()), global dof, position.
       std::vector<unsigned int>            node_local;
