@@ -145,10 +145,15 @@ namespace scarp
         Patterns::Anything(),
         "Resume from this checkpoint directory (or an output directory "
         "that holds one in checkpoint/) instead of seeding the bodies; "
-        "empty: start afresh. The command line's --resume overrides it. "
+        "empty: start afresh; auto: resume from <Output directory>/"
+        "checkpoint if the output directory holds one (also when only "
+        "checkpoint.old is left), else start afresh, so that the same "
+        "command continues a run in parts (a job chain on a cluster). "
+        "The command line's --resume overrides it. "
         "The checkpoint must come from this scene: every entry but those "
         "of this subsection, <Output directory> and the stages' <End time> "
-        "must be the same.");
+        "must be the same; a checkpoint that is not (also with auto) stops "
+        "the run with the reason.");
       prm.leave_subsection();
     }
 
@@ -166,7 +171,20 @@ namespace scarp
       time_interval = prm.get_double("Time interval");
       stage_ends    = prm.get_bool("At stage ends");
       if (resume_from.empty())
-        resume_from = prm.get("Resume from");
+        {
+          resume_from = prm.get("Resume from");
+          if (resume_from == "auto")
+            {
+              // Decided on rank 0 (the file system the checkpoints share),
+              // alike on every rank.
+              bool found = false;
+              if (Utilities::MPI::this_mpi_process(communicator) == 0)
+                found = fs::exists(output_directory + "/checkpoint") ||
+                        fs::exists(output_directory + "/checkpoint.old");
+              found       = Utilities::MPI::broadcast(communicator, found, 0);
+              resume_from = found ? output_directory : "";
+            }
+        }
       prm.leave_subsection();
       next_time = time_interval;
 

@@ -18,6 +18,11 @@
 #       the two renames (only checkpoint.old) resumes from that. A run
 #       sent SIGINT from outside writes a checkpoint and stops; a run with
 #       a wall-time interval writes checkpoints.
+#   auto     <Resume from> = auto: the same command starts the run (no
+#       checkpoint), is stopped by SIGTERM, resumes it to the uninterrupted
+#       results, and once more (from its last checkpoint, same results);
+#       a checkpoint of another scene in the output directory is refused,
+#       not overwritten.
 #   format4  a checkpoint written by scarp before 2026-12-02 (stored in
 #       tests/app/checkpoint_format4) resumes to the uninterrupted results.
 #   refused  a checkpoint of another scene, dimension or format, with
@@ -313,6 +318,38 @@ case "$case" in
     n=$(grep -c "checkpoint at step" wall.log || true)
     [ "$n" -ge 1 ] && [ -f wall/checkpoint/manifest ] \
       && ok "it wrote $n checkpoint(s) by wall time" || fail "no checkpoint by wall time"
+    ;;
+  auto)
+    # Same rank count, the same steps: bitwise to the 10 digits of
+    # statistics.csv, as in the elastic case.
+    auto_scene() { # output directory
+      elastic_scene "$1"
+      printf 'subsection Checkpoint\n  set Resume from = auto\nend\n'
+    }
+    elastic_scene full > full.prm
+    auto_scene parts > parts.prm
+    expect_status "$(run full 1)" 0 "uninterrupted run"
+    expect_status "$(SCARP_TEST_SIGTERM_AT_STEP=100 run parts 1)" 1 \
+      "auto, no checkpoint: started, stopped by SIGTERM at step 100"
+    grep -q "Resumed from" parts.log && fail "the first part says it resumed" \
+      || ok "the first part started afresh"
+    expect_status "$(run parts 1)" 0 "the same command again"
+    grep -q "Resumed from parts/checkpoint at step 100" parts.log \
+      && ok "it resumed from parts/checkpoint at step 100" \
+      || { fail "no 'Resumed from parts/checkpoint at step 100'"; tail -3 parts.log; }
+    /usr/bin/python3 "$compare" full parts 1e-12 || fails=$((fails + 1))
+    expect_status "$(run parts 1)" 0 "the same command once more, after the end"
+    /usr/bin/python3 "$compare" full parts 1e-12 || fails=$((fails + 1))
+    # A checkpoint of another scene where auto looks: refused, kept.
+    auto_scene parts | sed "s/Young's modulus = 1e6/Young's modulus = 2e6/" > other.prm
+    sed -i 's/^set Output directory = .*/set Output directory = parts/' other.prm
+    s=$(run other 1)
+    if [ "$s" = 1 ] && grep -q "written for another scene" other.log \
+      && [ -f parts/checkpoint/manifest ]; then
+      ok "auto with another scene's checkpoint: refused, checkpoint kept"
+    else
+      fail "auto with another scene's checkpoint: exit status $s"; tail -3 other.log
+    fi
     ;;
   refused)
     elastic_scene base > base.prm
