@@ -241,35 +241,6 @@ namespace scarp
 
     template <int dim>
     void
-    MpmTransfer<dim>::shape_at(const typename GimpPatches<dim>::Patch *patch,
-                               const Point<dim>                       &xi,
-                               const Point<dim>                       &x,
-                               const double                            h,
-                               const double                            V0,
-                               std::vector<double>                    &value,
-                               std::vector<Tensor<1, dim>> &gradient) const
-    {
-      if (patch)
-        {
-          double l[dim];
-          gimp_half_width<dim>(V0, h, x, grid.domain(), l);
-          GimpPatches<dim>::evaluate(*patch, x, l, value, gradient);
-          return;
-        }
-      Q1Shape<dim> q1;
-      q1.evaluate(xi, h);
-      value.resize(Q1Shape<dim>::n);
-      gradient.resize(Q1Shape<dim>::n);
-      for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-        {
-          value[i]    = q1.value[i];
-          gradient[i] = q1.gradient[i];
-        }
-    }
-
-
-    template <int dim>
-    void
     MpmTransfer<dim>::compute_shapes()
     {
       // All sweeps of a step evaluate the shape functions at the points'
@@ -326,24 +297,21 @@ namespace scarp
                     {
                       GimpPatches<dim>::evaluate_general(
                         *occupied.patch, x, l, value, gradient);
-                      n_entries += keep_nonzero(value, gradient, n_entries);
+                      n_entries += keep_nonzero(value.data(),
+                                                gradient.data(),
+                                                value.size(),
+                                                n_entries);
                     }
                 }
               else
                 {
-                  // Q1: straight into the arrays, with keep_nonzero()'s
-                  // test (a point on the far corner of its cell has a node
-                  // of zero value and gradient).
+                  // Q1: straight from the evaluation into the cache.
                   Q1Shape<dim> q1;
                   q1.evaluate(xi, h);
-                  for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
-                    if (q1.value[i] != 0. || q1.gradient[i].norm_square() != 0.)
-                      {
-                        shape_node[n_entries]     = i;
-                        shape_value[n_entries]    = q1.value[i];
-                        shape_gradient[n_entries] = q1.gradient[i];
-                        ++n_entries;
-                      }
+                  n_entries += keep_nonzero(q1.value,
+                                            q1.gradient,
+                                            Q1Shape<dim>::n,
+                                            n_entries);
                 }
               shape_begin[k + 1] = n_entries;
             }
@@ -353,20 +321,21 @@ namespace scarp
 
     template <int dim>
     unsigned int
-    MpmTransfer<dim>::keep_nonzero(const std::vector<double>         &value,
-                                   const std::vector<Tensor<1, dim>> &gradient,
-                                   const unsigned int                 at)
+    MpmTransfer<dim>::keep_nonzero(const double         *value,
+                                   const Tensor<1, dim> *gradient,
+                                   const unsigned int    n,
+                                   const unsigned int    at)
     {
-      unsigned int n = 0;
-      for (unsigned int i = 0; i < value.size(); ++i)
+      unsigned int kept = 0;
+      for (unsigned int i = 0; i < n; ++i)
         if (value[i] != 0. || gradient[i].norm_square() != 0.)
           {
-            shape_node[at + n]     = i;
-            shape_value[at + n]    = value[i];
-            shape_gradient[at + n] = gradient[i];
-            ++n;
+            shape_node[at + kept]     = i;
+            shape_value[at + kept]    = value[i];
+            shape_gradient[at + kept] = gradient[i];
+            ++kept;
           }
-      return n;
+      return kept;
     }
 
 

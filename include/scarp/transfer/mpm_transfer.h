@@ -201,28 +201,19 @@ namespace scarp
                         StepReport                         &report,
                         DamagePoints<dim>                  *damage_points,
                         const Tensor<1, dim>               &gravity);
-      /// Weights and gradients of the point at reference location @p xi
-      /// (Q1), or at @p x with reference volume @p V0 (GIMP).
-      void
-      shape_at(const typename GimpPatches<dim>::Patch *patch,
-               const Point<dim>                       &xi,
-               const Point<dim>                       &x,
-               const double                            h,
-               const double                            V0,
-               std::vector<double>                    &value,
-               std::vector<Tensor<1, dim>>            &gradient) const;
       void
       compute_node_cutoffs();
       /// Fill the shape cache for the points of the occupied cells.
       void
       compute_shapes();
-      /// Write the non-zero entries of @p value, @p gradient (indexed by
-      /// the cell's nodes) to the shape cache from entry @p at on; returns
-      /// their number.
+      /// Write the non-zero entries of the @p n values and gradients
+      /// (indexed by the cell's nodes) to the shape cache from entry @p at
+      /// on; returns their number.
       unsigned int
-      keep_nonzero(const std::vector<double>         &value,
-                   const std::vector<Tensor<1, dim>> &gradient,
-                   const unsigned int                 at);
+      keep_nonzero(const double         *value,
+                   const Tensor<1, dim> *gradient,
+                   const unsigned int    n,
+                   const unsigned int    at);
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
       void
