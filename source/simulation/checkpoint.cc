@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <scarp/base/exceptions.h>
+#include <scarp/nonlocal/parameters.h>
 #include <scarp/simulation/checkpoint.h>
 
 #include <algorithm>
@@ -151,8 +152,8 @@ namespace scarp
         "command continues a run in parts (a job chain on a cluster). "
         "The command line's --resume overrides it. "
         "The checkpoint must come from this scene: every entry but those "
-        "of this subsection, <Output directory> and the stages' <End time> "
-        "must be the same; a checkpoint that is not (also with auto) stops "
+        "of this subsection, <Output directory>, the stages' <End time> "
+        "and <Non-local average/Skin distance fraction> must be the same; a checkpoint that is not (also with auto) stops "
         "the run with the reason.");
       prm.leave_subsection();
     }
@@ -190,7 +191,8 @@ namespace scarp
 
       // The fingerprint of the scene: every entry that differs from its
       // default, with those that may differ between a run and its restart
-      // set to their defaults.
+      // (the checkpoint's own, the stages' end times, the output directory,
+      // the skin of the non-local lists) set to their defaults.
       const std::vector<std::pair<std::string, std::string>> free_entries{
         {"Wall time interval", "0"},
         {"Time interval", "0"},
@@ -215,11 +217,30 @@ namespace scarp
           prm.set("End time", "1");
           prm.leave_subsection();
         }
+      // The skin of the non-local lists changes the cost, not the result
+      // (doc/nonlocal.md): a resumed run may take another one. Set to its
+      // default, so that the fingerprint of a scene is what it was before
+      // the entry was exempt.
+      std::string skin_fraction;
+      {
+        ParameterHandler fresh;
+        nonlocal::NonlocalParameters::declare_parameters(fresh);
+        fresh.enter_subsection("Non-local average");
+        const std::string default_skin = fresh.get("Skin distance fraction");
+        fresh.leave_subsection();
+        prm.enter_subsection("Non-local average");
+        skin_fraction = prm.get("Skin distance fraction");
+        prm.set("Skin distance fraction", default_skin);
+        prm.leave_subsection();
+      }
       const std::string directory = prm.get("Output directory");
       prm.set("Output directory", "output");
       std::ostringstream text;
       prm.print_parameters(text, ParameterHandler::ShortPRM);
       prm.set("Output directory", directory);
+      prm.enter_subsection("Non-local average");
+      prm.set("Skin distance fraction", skin_fraction);
+      prm.leave_subsection();
       for (std::size_t k = 0; k < stage_names.size(); ++k)
         {
           prm.enter_subsection("Stage " + stage_names[k]);
@@ -494,8 +515,9 @@ namespace scarp
         return "it was written for another scene (scene fingerprint " + hash +
                ", this scene's is " + scene_hash +
                "): every entry but those of <Checkpoint>, <Output "
-               "directory> and the stages' <End time> must be the same as in "
-               "the run that wrote it.";
+               "directory>, the stages' <End time> and <Non-local "
+               "average/Skin distance fraction> must be the same as in the "
+               "run that wrote it.";
       if (saved_properties != properties)
         return "its material points carry other properties (" +
                saved_properties + ") than this scarp gives them (" +

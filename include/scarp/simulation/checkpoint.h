@@ -53,8 +53,9 @@ namespace scarp
       /// Reads the subsection Checkpoint and <Output directory>, and
       /// fingerprints the scene (at the top level of @p prm): the entries
       /// that differ from @p defaults (the ShortPRM text of the same
-      /// declarations, unset), but those of Checkpoint, <Output directory>
-      /// and the <End time> of the stages @p stage_names.
+      /// declarations, unset), but those of Checkpoint, <Output directory>,
+      /// the <End time> of the stages @p stage_names and the skin of the
+      /// non-local lists (which changes the cost, not the result).
       void
       parse_parameters(ParameterHandler               &prm,
                        const std::vector<std::string> &stage_names,
