@@ -153,7 +153,8 @@ namespace scarp
         "The command line's --resume overrides it. "
         "The checkpoint must come from this scene: every entry but those "
         "of this subsection, <Output directory>, the stages' <End time> "
-        "and <Non-local average/Skin distance fraction> must be the same; a checkpoint that is not (also with auto) stops "
+        "and <Non-local average/Skin distance fraction> must be the same; a "
+        "checkpoint that is not (also with auto) stops "
         "the run with the reason.");
       prm.leave_subsection();
     }
