@@ -8,6 +8,13 @@ surfaces over the initial one of the first run, and prints a table of the
 diagnostics (debris angle, run-out, failed area, scarp retreat, failure
 onset) of every run with the change from the run before it.
 
+With three or more runs, given from the coarsest level to the finest, it
+also judges the last three by the convergence criterion of the study
+(doc/joss_bay.md): each quantity changes from the second to the third by
+less than half its change from the first to the second, and the two finest
+agree within 1.5 deg (debris angle), 0.5 m (run-out, scarp retreat) and
+10 % (failure onset; the failed area has the first test only).
+
 Uses the Debian package python3-matplotlib, hence /usr/bin/python3.
 
 Example:
@@ -33,6 +40,47 @@ QUANTITIES = [
     ("scarp_retreat_m", "scarp retreat [m]"),
     ("failure_onset_s", "failure onset [s]"),
 ]
+
+
+# Largest difference allowed between the two finest levels: absolute, or
+# relative to the finest level's value ("rel").
+TOLERANCES = {
+    "debris_angle_deg": (1.5, "abs"),
+    "run_out_m": (0.5, "abs"),
+    "scarp_retreat_m": (0.5, "abs"),
+    "failure_onset_s": (0.10, "rel"),
+}
+
+
+def criterion(runs):
+    """Print the second-change test and the tolerances for the last three
+    runs; returns whether every quantity passes both."""
+    (l1, _, c1), (l2, _, c2), (l3, _, c3) = runs[-3:]
+    print()
+    print(f"| criterion ({l1} -> {l2} -> {l3}) | change 1 | change 2 | "
+          "|change 2| < |change 1| / 2 | finest two within | verdict |")
+    print("|---|---|---|---|---|---|")
+    converged = True
+    for key, name in QUANTITIES:
+        v1, v2, v3 = (c.get(key, math.nan) for c in (c1, c2, c3))
+        d1, d2 = v2 - v1, v3 - v2
+        # No change at all between the two finest passes too.
+        halves = abs(d2) < 0.5 * abs(d1) or d2 == 0
+        tolerance = TOLERANCES.get(key)
+        if tolerance is None:
+            within, text = True, "(none)"
+        else:
+            limit, kind = tolerance
+            allowed = limit * abs(v3) if kind == "rel" else limit
+            within = abs(d2) <= allowed
+            text = (f"{allowed:.2f} ({100 * limit:.0f} %): {within}"
+                    if kind == "rel" else f"{allowed:.2f}: {within}")
+        ok = halves and within
+        converged = converged and ok
+        print(f"| {name} | {d1:+.2f} | {d2:+.2f} | {halves} | {text} | "
+              f"{'converged' if ok else 'not converged'} |")
+    print(f"all quantities converged: {converged}")
+    return converged
 
 
 def read_profile(path):
@@ -73,6 +121,9 @@ def main():
             cells.append(text)
             previous = value
         print(f"| {name} | " + " | ".join(cells) + " |")
+
+    if len(runs) >= 3:
+        criterion(runs)
 
     fig, ax = plt.subplots(figsize=(10, 4))
     for k, (label, directory, cliff) in enumerate(runs):

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# tools/compare_profiles.py judges three levels by the study's convergence
+# criterion (doc/joss_bay.md): each quantity changes from level 2 to 3 by
+# less than half its change from level 1 to 2, and levels 2 and 3 agree
+# within 1.5 deg, 0.5 m, 0.5 m and 10 % (angle, run-out, retreat, onset).
+# Hand-made run directories (summary.json, cliff_profile.csv) whose
+# verdicts follow from the numbers by hand, at and beside each threshold.
+# Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
+set -euo pipefail
+src="$2"; run="$3"
+rm -rf "$run"; mkdir -p "$run"; cd "$run"
+fails=0
+
+level() { # dir angle run_out area retreat onset
+  mkdir -p "$1"
+  cat > "$1/summary.json" <<JSON
+{"cliff": {"debris_angle_deg": $2, "run_out_m": $3, "failed_area_m2": $4,
+           "scarp_retreat_m": $5, "failure_onset_s": $6}}
+JSON
+  printf 'x,y_initial,y_final\n0,15,15\n10,15,14\n20,0,0\n' > "$1/cliff_profile.csv"
+}
+
+# verdict NAME QUANTITY EXPECTED: the line of QUANTITY in the criterion
+# table says EXPECTED ("converged" or "not converged").
+verdict() {
+  local line
+  line=$(grep -F "| $2 |" "$1.out" | tail -1 || true)
+  case "$line" in
+    *"| $3 |") echo "  ok:   $1: $2 $3" ;;
+    *) echo "  FAIL: $1: $2: expected $3, got: $line"; fails=$((fails + 1)) ;;
+  esac
+}
+
+judge() { # name: compares name/1, name/2, name/3
+  /usr/bin/python3 "$src/tools/compare_profiles.py" --output "$1.png" \
+    "L1=$1/1" "L2=$1/2" "L3=$1/3" > "$1.out"
+}
+
+# Converged: every second change below half the first and within its
+# tolerance (angle 4 -> 1.4 deg, run-out 1 -> 0.4 m, area 10 -> 4 m^2,
+# retreat -2 -> -0.45 m, onset -5.4 -> -0.3 s = 7.5 % of 4 s).
+level conv/1 40 5 50 6 9.7
+level conv/2 44 6 60 4 4.3
+level conv/3 45.4 6.4 64 3.55 4.0
+judge conv
+for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
+         "scarp retreat [m]" "failure onset [s]"; do
+  verdict conv "$q" converged
+done
+grep -q "all quantities converged: True" conv.out \
+  && echo "  ok:   conv: all converged" || { echo "  FAIL: conv"; fails=$((fails + 1)); }
+
+# Not converged, one reason each: the angle's second change is more than
+# half its first (2 -> 1.2 deg, within 1.5); the run-out halves but is
+# beyond 0.5 m (2 -> 0.6 m); the retreat does not change from 1 to 2 and
+# then does (0 -> 0.1 m); the onset halves but is beyond 10 % (10 -> 0.5 s
+# of 4.5 s = 11 %); the area increases its change (4 -> 5 m^2).
+level not/1 40 5 50 4 15
+level not/2 42 7 54 4 5
+level not/3 43.2 7.6 59 4.1 4.5
+judge not
+for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
+         "scarp retreat [m]" "failure onset [s]"; do
+  verdict not "$q" "not converged"
+done
+grep -q "all quantities converged: False" not.out \
+  && echo "  ok:   not: not all converged" || { echo "  FAIL: not"; fails=$((fails + 1)); }
+
+# No change at all on either refinement counts as converged.
+level same/1 40 5 50 4 5
+level same/2 40 5 50 4 5
+level same/3 40 5 50 4 5
+judge same
+verdict same "run-out [m]" converged
+
+[ "$fails" = 0 ] || { echo "$fails check(s) failed"; exit 1; }
