@@ -52,24 +52,23 @@ def main():
         data = [(float(r["time"]), float(r["kinetic_energy"]),
                  float(r["max_speed"]), float(r["damaged_volume"]))
                 for r in rows]
-        runs.append((label, onset, data))
+        runs.append((label, onset, data, [row[0] for row in data]))
 
     print("| time after the onset | " + " | ".join(
         f"{label}: E_kin [J], max speed [m/s], damaged volume [m^2]"
-        for label, _, _ in runs) + " |")
+        for label, _, _, _ in runs) + " |")
     print("|---" * (len(runs) + 1) + "|")
     for dt in times:
         cells = []
-        for _, onset, data in runs:
-            t = onset + dt
-            i = bisect.bisect_left([row[0] for row in data], t)
+        for _, onset, data, row_times in runs:
+            i = bisect.bisect_left(row_times, onset + dt)
             if i >= len(data):
                 cells.append("(not reached)")
                 continue
             _, e, v, dv = data[i]
             cells.append(f"{e:.3g}, {v:.2f}, {dv:.1f}")
         print(f"| {dt:g} s | " + " | ".join(cells) + " |")
-    for label, onset, data in runs:
+    for label, onset, data, _ in runs:
         last = data[-1][0] - onset
         print(f"{label}: onset at t = {onset:.3f} s, last row "
               f"{last:.2f} s after it")

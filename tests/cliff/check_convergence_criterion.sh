@@ -31,6 +31,19 @@ verdict() {
   esac
 }
 
+# verdict_all NAME EXPECTED OVERALL: every quantity EXPECTED, and the
+# summary line "all quantities converged: OVERALL".
+verdict_all() {
+  local q
+  for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
+           "scarp retreat [m]" "failure onset [s]"; do
+    verdict "$1" "$q" "$2"
+  done
+  grep -q "all quantities converged: $3" "$1.out" \
+    && echo "  ok:   $1: all quantities converged: $3" \
+    || { echo "  FAIL: $1: no 'all quantities converged: $3'"; fails=$((fails + 1)); }
+}
+
 judge() { # name: compares name/1, name/2, name/3
   /usr/bin/python3 "$src/tools/compare_profiles.py" --output "$1.png" \
     "L1=$1/1" "L2=$1/2" "L3=$1/3" > "$1.out"
@@ -43,12 +56,7 @@ level conv/1 40 5 50 6 9.7
 level conv/2 44 6 60 4 4.3
 level conv/3 45.4 6.4 64 3.55 4.0
 judge conv
-for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
-         "scarp retreat [m]" "failure onset [s]"; do
-  verdict conv "$q" converged
-done
-grep -q "all quantities converged: True" conv.out \
-  && echo "  ok:   conv: all converged" || { echo "  FAIL: conv"; fails=$((fails + 1)); }
+verdict_all conv converged True
 
 # Not converged, one reason each: the angle's second change is more than
 # half its first (2 -> 1.2 deg, within 1.5); the run-out halves but is
@@ -59,12 +67,7 @@ level not/1 40 5 50 4 15
 level not/2 42 7 54 4 5
 level not/3 43.2 7.6 59 4.1 4.5
 judge not
-for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
-         "scarp retreat [m]" "failure onset [s]"; do
-  verdict not "$q" "not converged"
-done
-grep -q "all quantities converged: False" not.out \
-  && echo "  ok:   not: not all converged" || { echo "  FAIL: not"; fails=$((fails + 1)); }
+verdict_all not "not converged" False
 
 # No change at all on either refinement counts as converged.
 level same/1 40 5 50 4 5
