@@ -15,6 +15,10 @@ less than half its change from the first to the second, and the two finest
 agree within 1.5 deg (debris angle), 0.5 m (run-out, scarp retreat) and
 10 % (failure onset; the failed area has the first test only).
 
+--particles-output draws the points at rest (cliff_end_particles.csv) of
+each run side by side, one panel per run on the same axes, coloured by
+damage, with the run's final surface over them.
+
 Uses the Debian package python3-matplotlib, hence /usr/bin/python3.
 
 Example:
@@ -27,6 +31,8 @@ import argparse
 import csv
 import json
 import math
+import os
+import sys
 
 import matplotlib
 
@@ -94,9 +100,47 @@ def read_profile(path):
     return x, y0, y1
 
 
+def draw_particles(runs, filename, xlim=None):
+    """One panel per run, stacked, on the same axes: the points at rest
+    coloured by damage and the run's final surface."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from plot_cliff import read_particles  # same directory
+
+    fig, axes = plt.subplots(len(runs), 1, sharex=True, sharey=True,
+                             figsize=(10, 2.6 * len(runs)), squeeze=False)
+    for ax, (label, directory, cliff) in zip(axes[:, 0], runs):
+        x, y, damage = read_particles(f"{directory}/cliff_end_particles.csv")
+        # Marker area in points^2 shrinks with the number of points, so
+        # that the finest run is not a solid blot.
+        size = min(1.0, 2.0e4 / max(len(x), 1))
+        image = ax.scatter(x, y, c=damage, s=size, cmap="viridis", vmin=0.,
+                           vmax=1., linewidths=0, rasterized=True)
+        px, _, py = read_profile(f"{directory}/cliff_profile.csv")
+        ax.plot(px, py, color="k", lw=0.8, drawstyle="steps-mid")
+        angle = cliff.get("debris_angle_deg") or math.nan
+        ax.set_title(f"{label}: {len(x)} points, debris angle {angle:.1f} deg, "
+                     f"run-out {cliff.get('run_out_m', math.nan):.2f} m",
+                     fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_ylabel("y [m]")
+    if xlim:
+        axes[0, 0].set_xlim(*xlim)
+    axes[-1, 0].set_xlabel("x [m]")
+    fig.colorbar(image, ax=axes[:, 0], label="damage", shrink=0.8)
+    fig.savefig(filename, dpi=150)
+    plt.close(fig)
+    print(f"wrote {filename}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--output", required=True, help="PNG to write")
+    parser.add_argument("--particles-output", metavar="PNG",
+                        help="also draw each run's points at rest "
+                        "(cliff_end_particles.csv), one panel per run")
+    parser.add_argument("--xlim", type=float, nargs=2,
+                        metavar=("XMIN", "XMAX"),
+                        help="x range of the --particles-output panels")
     parser.add_argument("runs", nargs="+", metavar="LABEL=DIR")
     args = parser.parse_args()
 
@@ -140,6 +184,8 @@ def main():
     fig.tight_layout()
     fig.savefig(args.output, dpi=120)
     print(f"wrote {args.output}")
+    if args.particles_output:
+        draw_particles(runs, args.particles_output, args.xlim)
 
 
 if __name__ == "__main__":

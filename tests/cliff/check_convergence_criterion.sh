@@ -18,6 +18,8 @@ level() { # dir angle run_out area retreat onset
            "scarp_retreat_m": $5, "failure_onset_s": $6}}
 JSON
   printf 'x,y_initial,y_final\n0,15,15\n10,15,14\n20,0,0\n' > "$1/cliff_profile.csv"
+  printf 'x,y,damage,x0,y0,volume\n1,1,0,1,1,1\n12,2,1,9,9,1\n' \
+    > "$1/cliff_end_particles.csv"
 }
 
 # verdict NAME QUANTITY EXPECTED: the line of QUANTITY in the criterion
@@ -46,7 +48,12 @@ verdict_all() {
 
 judge() { # name: compares name/1, name/2, name/3
   /usr/bin/python3 "$src/tools/compare_profiles.py" --output "$1.png" \
+    --particles-output "$1_particles.png" --xlim 0 20 \
     "L1=$1/1" "L2=$1/2" "L3=$1/3" > "$1.out"
+  # Both pictures are written (their content is for the eye).
+  for f in "$1.png" "$1_particles.png"; do
+    [ -s "$f" ] || { echo "  FAIL: $f not written"; fails=$((fails + 1)); }
+  done
 }
 
 # Converged: every second change below half the first and within its
