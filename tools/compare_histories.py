@@ -44,7 +44,7 @@ def main():
 
     runs = []
     for item in args.runs:
-        label, rest = item.split("=", 1)
+        label, rest = item.rsplit("=", 1)  # labels may hold "="
         directory, _, given = rest.partition("@")
         onset = float(given) if given else onset_time(directory)
         rows = list(csv.DictReader(open(os.path.join(directory,

@@ -106,16 +106,27 @@ def draw_particles(runs, filename, xlim=None):
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from plot_cliff import read_particles  # same directory
 
+    data = [(label, cliff, read_particles(f"{directory}/cliff_end_particles.csv"),
+             read_profile(f"{directory}/cliff_profile.csv"))
+            for label, directory, cliff in runs]
+    x_range = xlim or (min(min(d[2][0]) for d in data),
+                       max(max(d[2][0]) for d in data))
+    y_range = (min(min(d[2][1]) for d in data) - 0.5,
+               max(max(d[2][1]) for d in data) + 0.5)
+    # Panels of the data's aspect ratio, about 7.5 inches wide (the
+    # colour bar takes the rest of the 10).
+    height = 7.5 * (y_range[1] - y_range[0]) / (x_range[1] - x_range[0])
     fig, axes = plt.subplots(len(runs), 1, sharex=True, sharey=True,
-                             figsize=(10, 2.6 * len(runs)), squeeze=False)
-    for ax, (label, directory, cliff) in zip(axes[:, 0], runs):
-        x, y, damage = read_particles(f"{directory}/cliff_end_particles.csv")
+                             figsize=(10, (height + 0.4) * len(runs) + 0.5),
+                             squeeze=False, layout="constrained")
+    for ax, (label, cliff, (x, y, damage), (px, _, py)) in zip(axes[:, 0],
+                                                                 data):
         # Marker area in points^2 shrinks with the number of points, so
-        # that the finest run is not a solid blot.
-        size = min(1.0, 2.0e4 / max(len(x), 1))
+        # that the finest run is not a solid blot, but stays visible for
+        # the sparse points of dilated debris.
+        size = max(0.3, min(1.0, 2.0e4 / max(len(x), 1)))
         image = ax.scatter(x, y, c=damage, s=size, cmap="viridis", vmin=0.,
                            vmax=1., linewidths=0, rasterized=True)
-        px, _, py = read_profile(f"{directory}/cliff_profile.csv")
         ax.plot(px, py, color="k", lw=0.8, drawstyle="steps-mid")
         angle = cliff.get("debris_angle_deg") or math.nan
         ax.set_title(f"{label}: {len(x)} points, debris angle {angle:.1f} deg, "
@@ -123,11 +134,11 @@ def draw_particles(runs, filename, xlim=None):
                      fontsize=9)
         ax.set_aspect("equal")
         ax.set_ylabel("y [m]")
-    if xlim:
-        axes[0, 0].set_xlim(*xlim)
+    axes[0, 0].set_xlim(*x_range)
+    axes[0, 0].set_ylim(*y_range)
     axes[-1, 0].set_xlabel("x [m]")
     fig.colorbar(image, ax=axes[:, 0], label="damage", shrink=0.8)
-    fig.savefig(filename, dpi=150)
+    fig.savefig(filename, dpi=100)
     plt.close(fig)
     print(f"wrote {filename}")
 
@@ -146,7 +157,7 @@ def main():
 
     runs = []
     for item in args.runs:
-        label, directory = item.split("=", 1)
+        label, directory = item.rsplit("=", 1)  # labels may hold "="
         summary = json.load(open(f"{directory}/summary.json"))
         runs.append((label, directory, summary.get("cliff", {})))
 

@@ -70,7 +70,7 @@ def main():
     print("|---" * (len(bands) + 1) + "|")
     status = 0
     for item in args.runs:
-        label, directory = item.split("=", 1)
+        label, directory = item.rsplit("=", 1)  # labels may hold "="
         d, x, y = read_profile(f"{directory}/cliff_profile.csv")
         cells = []
         for k, (lo, hi) in enumerate(bands):
