@@ -13,7 +13,9 @@ also judges the last three by the convergence criterion of the study
 (doc/joss_bay.md): each quantity changes from the second to the third by
 less than half its change from the first to the second, and the two finest
 agree within 1.5 deg (debris angle), 0.5 m (run-out, scarp retreat) and
-10 % (failure onset; the failed area has the first test only).
+10 % (failure onset; the failed areas, current and before the points
+moved, have the first test only; a quantity missing from a run's summary,
+as the second area in older runs, is left out).
 
 --particles-output draws the points at rest (cliff_end_particles.csv) of
 each run side by side, one panel per run on the same axes, coloured by
@@ -43,6 +45,7 @@ QUANTITIES = [
     ("debris_angle_deg", "debris angle [deg]"),
     ("run_out_m", "run-out [m]"),
     ("failed_area_m2", "failed area [m^2]"),
+    ("failed_reference_area_m2", "failed area before it moved [m^2]"),
     ("scarp_retreat_m", "scarp retreat [m]"),
     ("failure_onset_s", "failure onset [s]"),
 ]
@@ -68,7 +71,11 @@ def criterion(runs):
     print("|---|---|---|---|---|---|")
     converged = True
     for key, name in QUANTITIES:
-        v1, v2, v3 = (c.get(key, math.nan) for c in (c1, c2, c3))
+        if any(key not in c for c in (c1, c2, c3)):
+            # Summaries of older runs lack the newer quantities.
+            print(f"| {name} | | | | | not in every run |")
+            continue
+        v1, v2, v3 = (c[key] for c in (c1, c2, c3))
         d1, d2 = v2 - v1, v3 - v2
         # No change at all between the two finest passes too.
         halves = abs(d2) < 0.5 * abs(d1) or d2 == 0

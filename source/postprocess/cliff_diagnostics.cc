@@ -392,6 +392,7 @@ namespace scarp
         if ((p.position - p.initial_position).norm_square() > threshold_2)
           {
             r.failed_area += p.volume;
+            r.failed_reference_area += p.reference_volume;
             ++r.n_failed_particles;
             if (p.initial_position[1] >= band_bottom)
               {
@@ -431,6 +432,7 @@ namespace scarp
               << "# n_fit_points = " << r.n_fit_points << '\n'
               << "# fit_rms_residual = " << r.fit_rms_residual << '\n'
               << "# failed_area = " << r.failed_area << '\n'
+              << "# failed_reference_area = " << r.failed_reference_area << '\n'
               << "# n_failed_particles = " << r.n_failed_particles << '\n'
               << "# has_scarp = " << r.has_scarp << '\n'
               << "# scarp_position = " << r.scarp_position << '\n'

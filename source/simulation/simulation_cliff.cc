@@ -46,18 +46,20 @@ namespace scarp
                         p[layout.reference_position],
                         p[layout.reference_position + 1],
                         p[layout.reference_volume] * J,
+                        p[layout.reference_volume],
                         m.damage(p + layout.state)});
         }
       const auto all = Utilities::MPI::gather(communicator, local, 0);
       std::vector<postprocess::CliffDiagnostics::Particle> points;
       for (const auto &chunk : all)
-        for (std::size_t k = 0; k + 5 < chunk.size(); k += 6)
+        for (std::size_t k = 0; k + 6 < chunk.size(); k += 7)
           {
             postprocess::CliffDiagnostics::Particle q;
             q.position         = Point<2>(chunk[k], chunk[k + 1]);
             q.initial_position = Point<2>(chunk[k + 2], chunk[k + 3]);
             q.volume           = chunk[k + 4];
-            q.damage           = chunk[k + 5];
+            q.reference_volume = chunk[k + 5];
+            q.damage           = chunk[k + 6];
             points.push_back(q);
           }
       return points;
@@ -94,6 +96,7 @@ namespace scarp
       cliff_summary.add("run_out_m", r.run_out);
       cliff_summary.add("debris_toe_x_m", r.debris_toe);
       cliff_summary.add("failed_area_m2", r.failed_area);
+      cliff_summary.add("failed_reference_area_m2", r.failed_reference_area);
       cliff_summary.add("scarp_position_x_m", r.scarp_position);
       cliff_summary.add("scarp_retreat_m", r.scarp_retreat);
       cliff_summary.add("failure_onset_s", onset);
@@ -107,8 +110,9 @@ namespace scarp
       std::ostringstream s;
       s << std::setprecision(4) << "Cliff: debris angle " << r.debris_angle
         << " deg, run-out " << r.run_out << " m, failed area " << r.failed_area
-        << " m^2, scarp at x = " << r.scarp_position << " m, failure onset "
-        << onset << " s after the start of damage, "
+        << " m^2 (" << r.failed_reference_area
+        << " m^2 before it moved), scarp at x = " << r.scarp_position
+        << " m, failure onset " << onset << " s after the start of damage, "
         << "max damage " << last_report.max_damage << ", dissipated "
         << last_report.plastic_dissipation + last_report.damage_dissipation
         << " J/m";

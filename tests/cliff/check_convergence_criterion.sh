@@ -11,11 +11,13 @@ src="$2"; run="$3"
 rm -rf "$run"; mkdir -p "$run"; cd "$run"
 fails=0
 
-level() { # dir angle run_out area retreat onset
+level() { # dir angle run_out area retreat onset [reference_area]
   mkdir -p "$1"
+  local reference=""
+  [ $# -ge 7 ] && reference=", \"failed_reference_area_m2\": $7"
   cat > "$1/summary.json" <<JSON
 {"cliff": {"debris_angle_deg": $2, "run_out_m": $3, "failed_area_m2": $4,
-           "scarp_retreat_m": $5, "failure_onset_s": $6}}
+           "scarp_retreat_m": $5, "failure_onset_s": $6$reference}}
 JSON
   printf 'x,y_initial,y_final\n0,15,15\n10,15,14\n20,0,0\n' > "$1/cliff_profile.csv"
   printf 'x,y,damage,x0,y0,volume\n1,1,0,1,1,1\n12,2,1,9,9,1\n' \
@@ -38,6 +40,7 @@ verdict() {
 verdict_all() {
   local q
   for q in "debris angle [deg]" "run-out [m]" "failed area [m^2]" \
+           "failed area before it moved [m^2]" \
            "scarp retreat [m]" "failure onset [s]"; do
     verdict "$1" "$q" "$2"
   done
@@ -58,10 +61,11 @@ judge() { # name: compares name/1, name/2, name/3
 
 # Converged: every second change below half the first and within its
 # tolerance (angle 4 -> 1.4 deg, run-out 1 -> 0.4 m, area 10 -> 4 m^2,
-# retreat -2 -> -0.45 m, onset -5.4 -> -0.3 s = 7.5 % of 4 s).
-level conv/1 40 5 50 6 9.7
-level conv/2 44 6 60 4 4.3
-level conv/3 45.4 6.4 64 3.55 4.0
+# retreat -2 -> -0.45 m, onset -5.4 -> -0.3 s = 7.5 % of 4 s; area before
+# it moved 6 -> 2.9 m^2).
+level conv/1 40 5 50 6 9.7 40
+level conv/2 44 6 60 4 4.3 46
+level conv/3 45.4 6.4 64 3.55 4.0 48.9
 judge conv
 verdict_all conv converged True
 
@@ -69,18 +73,33 @@ verdict_all conv converged True
 # half its first (2 -> 1.2 deg, within 1.5); the run-out halves but is
 # beyond 0.5 m (2 -> 0.6 m); the retreat does not change from 1 to 2 and
 # then does (0 -> 0.1 m); the onset halves but is beyond 10 % (10 -> 0.5 s
-# of 4.5 s = 11 %); the area increases its change (4 -> 5 m^2).
-level not/1 40 5 50 4 15
-level not/2 42 7 54 4 5
-level not/3 43.2 7.6 59 4.1 4.5
+# of 4.5 s = 11 %); the area increases its change (4 -> 5 m^2), the area
+# before it moved halves it exactly (2 -> 1 m^2, not under half).
+level not/1 40 5 50 4 15 40
+level not/2 42 7 54 4 5 42
+level not/3 43.2 7.6 59 4.1 4.5 43
 judge not
 verdict_all not "not converged" False
 
 # No change at all on either refinement counts as converged.
-level same/1 40 5 50 4 5
-level same/2 40 5 50 4 5
-level same/3 40 5 50 4 5
+level same/1 40 5 50 4 5 40
+level same/2 40 5 50 4 5 40
+level same/3 40 5 50 4 5 40
 judge same
 verdict same "run-out [m]" converged
+verdict same "failed area before it moved [m^2]" converged
+
+# Summaries of older runs without the area before the points moved: that
+# quantity is left out and the others decide (here: all converged).
+level old/1 40 5 50 6 9.7
+level old/2 44 6 60 4 4.3
+level old/3 45.4 6.4 64 3.55 4.0
+judge old
+grep -q "| failed area before it moved \[m^2\] | | | | | not in every run |" old.out \
+  && echo "  ok:   old: area before it moved not in every run" \
+  || { echo "  FAIL: old: no 'not in every run' line"; fails=$((fails + 1)); }
+grep -q "all quantities converged: True" old.out \
+  && echo "  ok:   old: all quantities converged: True" \
+  || { echo "  FAIL: old: expected all converged"; fails=$((fails + 1)); }
 
 [ "$fails" = 0 ] || { echo "$fails check(s) failed"; exit 1; }

@@ -2,8 +2,9 @@
 //  - a vertical cliff that slumped into a triangular pile of 30 and 44
 //    degrees (regular and jittered lattices): debris angle, run-out, foot of
 //    the scarp, against tolerances derived from the particle spacing;
-//  - a rigid block displaced by a known vector: failed area, scarp
-//    position, run-out, and the gap rule;
+//  - a rigid block displaced by a known vector: failed area (current and
+//    reference, also with the block dilated), scarp position, run-out,
+//    and the gap rule;
 //  - no motion: no debris, zero run-out and failed area;
 //  - the Joss Bay profile seeded on a lattice: profile vs the geometry;
 //  - the CSV files and the parameters.
@@ -61,6 +62,7 @@ namespace
     p.position         = position;
     p.initial_position = initial;
     p.volume           = s * s;
+    p.reference_volume = s * s;
     return p;
   }
 
@@ -165,6 +167,7 @@ main()
     CHECK(!r.has_debris);
     CHECK(r.run_out == 0.);
     CHECK(r.failed_area == 0.);
+    CHECK(r.failed_reference_area == 0.);
     CHECK(r.n_failed_particles == 0);
     CHECK(!r.has_scarp);
     CHECK(std::isnan(r.debris_angle));
@@ -212,6 +215,17 @@ main()
     CHECK_CLOSE(r_default.debris_toe, 20., 1e-9);
     CHECK_CLOSE(r_default.run_out, 0., 1e-9);
     CHECK_CLOSE(r_default.failed_area, 3. * 10.5, 1e-9);
+    CHECK_CLOSE(r_default.failed_reference_area, 3. * 10.5, 1e-9);
+
+    // The block dilated to twice its volume (as fully damaged debris
+    // does): the failed area doubles, the reference area does not; the
+    // points left behind count in neither.
+    for (auto &p : particles)
+      if ((p.position - p.initial_position).norm() > 0.5)
+        p.volume *= 2.;
+    const auto r_dilated = Diagnostics(parameters).analyse(particles, cliff);
+    CHECK_CLOSE(r_dilated.failed_area, 2. * 3. * 10.5, 1e-9);
+    CHECK_CLOSE(r_dilated.failed_reference_area, 3. * 10.5, 1e-9);
   }
 
   // The Joss Bay profile on a lattice of 2 x 2 particles per 0.045 m cell.
@@ -270,7 +284,7 @@ main()
       else
         ++n_lines;
     CHECK(header);
-    CHECK(n_comments == 17);
+    CHECK(n_comments == 18);
     CHECK(n_lines == profile.n_bins());
     Diagnostics::write_particles_csv("joss_bay_particles.csv", particles);
     std::ifstream particles_in("joss_bay_particles.csv");

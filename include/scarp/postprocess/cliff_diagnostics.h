@@ -57,7 +57,10 @@ namespace scarp
      *    the angle of the seaward flank of the pile; the trimming keeps out
      *    the rounded toe and the top where the pile meets the scarp.
      *  - Failed area: sum of the volumes (areas per unit thickness in 2D) of
-     *    the particles displaced by more than the displacement threshold.
+     *    the particles displaced by more than the displacement threshold;
+     *    also the sum of their reference (initial) volumes, the failed
+     *    mass over the density, which the dilation of fully damaged
+     *    debris does not inflate.
      *  - Scarp position: the smallest initial x of the failed particles that
      *    started within Top band of the top of the cliff, i.e. where the
      *    failure surface reaches the top; scarp_retreat = crest x - scarp
@@ -73,6 +76,8 @@ namespace scarp
         Point<2> initial_position;
         /// Current volume (area per unit thickness in 2D) [m^2].
         double volume = 0.;
+        /// Volume in the reference (initial) configuration [m^2].
+        double reference_volume = 0.;
         /// Damage in [0, 1]; only written to the particle CSV.
         double damage = 0.;
       };
@@ -137,8 +142,11 @@ namespace scarp
         unsigned int n_fit_points     = 0;
         double       fit_rms_residual = nan;
 
-        double       failed_area        = 0.;
-        unsigned int n_failed_particles = 0;
+        double failed_area = 0.;
+        /// The failed particles' reference volumes: the failed area before
+        /// the debris dilated (fully damaged points expand freely).
+        double       failed_reference_area = 0.;
+        unsigned int n_failed_particles    = 0;
 
         /// Whether a failed particle started within the top band.
         bool   has_scarp      = false;
