@@ -22,6 +22,20 @@ rm -rf short_cliff_output
   "$src/tests/regression/expected/short_cliff" --tolerance 0.25 \
   --ignore cliff.run_out_m
 
+# tools/failed_areas.py recomputes both failed areas from the last particles
+# output: the area as it lies must equal the run's failed_area_m2 (the tool
+# checks it, exit status 1), the area before the points moved the run's
+# failed_reference_area_m2 (the tool prints two decimals: within 0.005).
+areas=$(/usr/bin/python3 "$src/tools/failed_areas.py" "short=$run/short_cliff_output")
+echo "$areas"
+before=$(echo "$areas" | awk -F'|' '$2 == " short " { gsub(/ /, "", $5); print $5 }')
+/usr/bin/python3 - "$run/short_cliff_output/summary.json" "$before" <<'PY'
+import json, sys
+written = json.load(open(sys.argv[1]))["cliff"]["failed_reference_area_m2"]
+assert abs(written - float(sys.argv[2])) <= 0.005, (written, sys.argv[2])
+print(f"ok: failed area before it moved {written} m^2 (tool: {sys.argv[2]})")
+PY
+
 # The same run stopped 0.1 s after the failure onset (what a resolution
 # study of the failure surface uses): it must say so, write the after-failure
 # snapshot, stop within a step of onset + 0.1 s, and find the same onset as
