@@ -17,24 +17,12 @@ Example:
 """
 
 import argparse
-import csv
 import math
+import os
 import sys
 
-
-def read_profile(path):
-    """Diagnostics ("# name = value" lines) and the columns x, y_final."""
-    diagnostics, rows = {}, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                name, _, value = line[1:].partition("=")
-                diagnostics[name.strip()] = float(value)
-            elif line.strip():
-                rows.append(line)
-    table = list(csv.DictReader(rows))
-    return (diagnostics, [float(r["x"]) for r in table],
-            [float(r["y_final"]) for r in table])
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_cliff import read_profile  # noqa: E402  (same directory)
 
 
 def fit_angle(x, y, summit, toe, beach, height, low, high):
@@ -71,7 +59,8 @@ def main():
     status = 0
     for item in args.runs:
         label, directory = item.rsplit("=", 1)  # labels may hold "="
-        d, x, y = read_profile(f"{directory}/cliff_profile.csv")
+        columns, d = read_profile(f"{directory}/cliff_profile.csv")
+        x, y = columns["x"], columns["y_final"]
         cells = []
         for k, (lo, hi) in enumerate(bands):
             angle, n = fit_angle(x, y, d["pile_summit"], d["debris_toe"],
