@@ -193,6 +193,7 @@ namespace scarp
       // The points of this rank go in before the cells they leave free
       // their slots: room for them first.
       PoolGrowth::reserve(particles, moves.size() - n_leaving_rank);
+      gained.clear();
       for (const Move &move : moves)
         {
           // Copies first: inserting may grow the pool's storage.
@@ -204,6 +205,7 @@ namespace scarp
               buffer.assign(properties.begin(), properties.end());
               particles.insert_particle(
                 x, move.reference, id, move.cell, make_array_view(buffer));
+              gained.push_back(move.cell);
             }
           else
             {
@@ -257,6 +259,7 @@ namespace scarp
                     triangulation.create_cell_iterator(CellId(cell_id));
                   particles.insert_particle(
                     x, reference, id, cell, make_array_view(buffer));
+                  gained.push_back(cell);
                 }
             }
         }
@@ -297,6 +300,7 @@ namespace scarp
           return true;
         }
       moves.clear();
+      gained.clear();
       n_last_moved            = 0;
       n_last_sent             = 0;
       n_moved_since_full_sort = 0;

@@ -138,6 +138,7 @@ namespace scarp
       occupied_cells.clear();
       node_arrays_valid      = false;
       occupied_cells_current = false;
+      candidate_cells_valid  = false;
       compute_node_cutoffs();
       setup_constraints();
     }
@@ -1126,11 +1127,31 @@ namespace scarp
       for (const OccupiedCell &occupied : occupied_cells)
         occupied_points.push_back(
           {occupied.cell, occupied.point_begin, occupied.point_end});
-      point_mover.sort(particle_handler,
-                       grid.triangulation(),
-                       occupied_points,
-                       point_handle,
-                       communicator);
+      candidate_cells_valid = point_mover.sort(particle_handler,
+                                               grid.triangulation(),
+                                               occupied_points,
+                                               point_handle,
+                                               communicator);
+      if (!candidate_cells_valid)
+        return;
+      // The mover left every point in a cell that held points before or in
+      // one it put points into: only these can hold points now. Sorted by
+      // active cell index, the order of the active cell iteration.
+      candidate_cells.clear();
+      for (const OccupiedCell &occupied : occupied_cells)
+        candidate_cells.push_back(occupied.cell);
+      for (const auto &cell : point_mover.cells_gained())
+        candidate_cells.emplace_back(&grid.triangulation(),
+                                     cell->level(),
+                                     cell->index(),
+                                     &grid.dof_handler());
+      const auto by_index = [](const auto &a, const auto &b) {
+        return a->active_cell_index() < b->active_cell_index();
+      };
+      std::sort(candidate_cells.begin(), candidate_cells.end(), by_index);
+      candidate_cells.erase(std::unique(candidate_cells.begin(),
+                                        candidate_cells.end()),
+                            candidate_cells.end());
     }
 
 
@@ -1152,35 +1173,58 @@ namespace scarp
       unsigned int n_occupied = 0;
       point_handle.clear();
       point_properties.clear();
-      auto &pool = particle_handler.get_property_pool();
-      for (const auto &cell : grid.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
+      auto      &pool  = particle_handler.get_property_pool();
+      const auto visit = [&](const auto &cell) {
+        const auto particles = particle_handler.particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          return;
+        if (n_occupied == occupied_cells.size())
           {
-            const auto particles = particle_handler.particles_in_cell(cell);
-            if (particles.begin() == particles.end())
-              continue;
-            if (n_occupied == occupied_cells.size())
-              {
-                occupied_cells.emplace_back();
-                same_cells = false;
-              }
-            OccupiedCell &occupied = occupied_cells[n_occupied++];
-            same_cells             = same_cells && occupied.cell == cell;
-            occupied.cell          = cell;
-            // Cells are axis-aligned squares (cubes): the edge is the
-            // distance of the first two vertices.
-            occupied.x0          = cell->vertex(0);
-            occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
-            occupied.point_begin = point_handle.size();
-            for (const auto &particle : particles)
-              {
-                const unsigned int handle = particle.get_local_index();
-                point_handle.push_back(handle);
-                point_properties.push_back(pool.get_properties(handle).data());
-              }
-            occupied.point_end = point_handle.size();
+            occupied_cells.emplace_back();
+            same_cells = false;
           }
-      same_cells = same_cells && n_occupied == occupied_cells.size();
+        OccupiedCell &occupied = occupied_cells[n_occupied++];
+        same_cells             = same_cells && occupied.cell == cell;
+        occupied.cell          = cell;
+        // Cells are axis-aligned squares (cubes): the edge is the
+        // distance of the first two vertices.
+        occupied.x0          = cell->vertex(0);
+        occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
+        occupied.point_begin = point_handle.size();
+        for (const auto &particle : particles)
+          {
+            const unsigned int handle = particle.get_local_index();
+            point_handle.push_back(handle);
+            point_properties.push_back(pool.get_properties(handle).data());
+          }
+        occupied.point_end = point_handle.size();
+      };
+      // Walking every active cell costs a few per cent of a step of the
+      // flowing debris on a refined mesh mostly of air; after the point
+      // mover's sort only the candidate cells can hold points.
+      // The count guards against a change of the points that bypassed
+      // sort_points(); then every cell is visited after all.
+      bool found_all = false;
+      if (candidate_cells_valid)
+        {
+          for (const auto &cell : candidate_cells)
+            visit(cell);
+          found_all =
+            point_handle.size() == particle_handler.n_locally_owned_particles();
+          if (!found_all)
+            {
+              n_occupied = 0;
+              same_cells = false;
+              point_handle.clear();
+              point_properties.clear();
+            }
+        }
+      if (!found_all)
+        for (const auto &cell : grid.dof_handler().active_cell_iterators())
+          if (cell->is_locally_owned())
+            visit(cell);
+      candidate_cells_valid = false;
+      same_cells            = same_cells && n_occupied == occupied_cells.size();
       occupied_cells.resize(n_occupied);
       occupied_cells_current = true;
 

@@ -101,6 +101,17 @@ namespace scarp
         return n_last_sent;
       }
 
+      /// The locally owned cells the last sort() put points into (from
+      /// this rank or another; repeats possible, in no order). Valid only
+      /// if that sort() returned true: then every cell of this rank that
+      /// holds points held them before or is in this list, which spares a
+      /// caller that keeps its occupied cells the walk over all cells.
+      const std::vector<typename Triangulation<dim>::active_cell_iterator> &
+      cells_gained() const
+      {
+        return gained;
+      }
+
     private:
       /// Set the reference locations of the points that stay and find the
       /// cells of those that left; false if one leaves this rank's cells or
@@ -140,6 +151,8 @@ namespace scarp
       std::size_t n_last_sent    = 0;
       /// Points moved here since the last full sort.
       std::size_t n_moved_since_full_sort = 0;
+      /// See cells_gained().
+      std::vector<typename Triangulation<dim>::active_cell_iterator> gained;
       /// The cells and handles of sort(particles, communicator).
       std::vector<CellPoints>   own_cells;
       std::vector<unsigned int> own_handles;

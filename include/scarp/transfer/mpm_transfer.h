@@ -275,6 +275,13 @@ namespace scarp
       /// sort_points() or setup() (a step in which no point changed cells
       /// only updates reference locations, and keeps them).
       bool occupied_cells_current = false;
+      /// After a sort_points() in which the point mover moved the points:
+      /// the cells that may hold points now (those that held them, those
+      /// that gained some), by active cell index, so that
+      /// find_occupied_cells() visits them instead of every active cell.
+      std::vector<typename DoFHandler<dim>::active_cell_iterator>
+           candidate_cells;
+      bool candidate_cells_valid = false;
       /// Nodes of the occupied cells: index in the local storage of the
       /// grid vectors (local_element()), global dof, position.
       std::vector<unsigned int>            node_local;
