@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -133,6 +134,14 @@ namespace scarp
                         "The scarp position is taken over the failed "
                         "particles that started within this distance [m] of "
                         "the cliff top; 0 = two bins.");
+      prm.declare_entry("Write history",
+                        "true",
+                        Patterns::Bool(),
+                        "Append the diagnostics (debris angle, run-out, "
+                        "failed areas, scarp retreat) with the kinetic "
+                        "energy to cliff_history.csv at every particle "
+                        "output: when they stop changing, the deposit has "
+                        "settled whatever the energy criterion says.");
     }
 
 
@@ -147,6 +156,7 @@ namespace scarp
       p.fit_lower_fraction     = prm.get_double("Fit lower fraction");
       p.fit_upper_fraction     = prm.get_double("Fit upper fraction");
       p.top_band               = prm.get_double("Top band");
+      p.write_history          = prm.get_bool("Write history");
       AssertThrow(p.fit_lower_fraction < p.fit_upper_fraction,
                   ExcMessage("Fit lower fraction (" +
                              number(p.fit_lower_fraction) +
@@ -442,6 +452,30 @@ namespace scarp
       for (unsigned int i = 0; i < profile.n_bins(); ++i)
         out << profile.x[i] << ',' << profile.y_initial[i] << ','
             << profile.y_final[i] << '\n';
+      AssertThrow(out, ExcMessage("Writing " + filename + " failed."));
+    }
+
+
+    void
+    CliffDiagnostics::append_history_row(const std::string &filename,
+                                         const double       time,
+                                         const double       kinetic_energy,
+                                         const double       max_speed,
+                                         const Result      &r)
+    {
+      const bool new_file = !std::filesystem::exists(filename) ||
+                            std::filesystem::file_size(filename) == 0;
+      std::ofstream out(filename, std::ios::app);
+      AssertThrow(out, ExcMessage("Cannot open " + filename + " to write."));
+      if (new_file)
+        out << "time,kinetic_energy,max_speed,debris_angle,run_out,"
+               "debris_toe,failed_area,failed_reference_area,"
+               "n_failed_particles,scarp_position,scarp_retreat\n";
+      out << std::setprecision(10) << time << ',' << kinetic_energy << ','
+          << max_speed << ',' << r.debris_angle << ',' << r.run_out << ','
+          << r.debris_toe << ',' << r.failed_area << ','
+          << r.failed_reference_area << ',' << r.n_failed_particles << ','
+          << r.scarp_position << ',' << r.scarp_retreat << '\n';
       AssertThrow(out, ExcMessage("Writing " + filename + " failed."));
     }
 

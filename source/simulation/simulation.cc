@@ -135,6 +135,10 @@ namespace scarp
         }
       else
         {
+          // A history left by an earlier run in this directory goes.
+          if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
+              outputs_enabled)
+            std::filesystem::remove(output_directory + "/cliff_history.csv");
           write_statistics(last_report, stages.front());
           write_output();
           loop.next_output = output_interval;

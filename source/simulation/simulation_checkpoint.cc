@@ -73,18 +73,24 @@ namespace scarp
       local_boxes.clear();
       if (averager)
         averager->invalidate_neighbour_lists();
-      // statistics.csv as it was at the checkpoint.
+      // statistics.csv and cliff_history.csv as they were at the
+      // checkpoint (a history the checkpoint has no copy of starts anew:
+      // its rows after the checkpoint would mislead).
       if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
           outputs_enabled)
-        {
-          const std::string saved =
-            checkpoint.loaded_directory() + "/statistics.csv";
-          if (std::filesystem::exists(saved))
-            std::filesystem::copy_file(
-              saved,
-              output_directory + "/statistics.csv",
-              std::filesystem::copy_options::overwrite_existing);
-        }
+        for (const std::string name : {"statistics.csv", "cliff_history.csv"})
+          {
+            const std::string saved =
+              checkpoint.loaded_directory() + "/" + name;
+            const std::string current = output_directory + "/" + name;
+            if (std::filesystem::exists(saved))
+              std::filesystem::copy_file(
+                saved,
+                current,
+                std::filesystem::copy_options::overwrite_existing);
+            else if (name == "cliff_history.csv")
+              std::filesystem::remove(current);
+          }
     }
 
 
@@ -103,7 +109,8 @@ namespace scarp
       checkpoint.write(grid.triangulation(),
                        particles,
                        out.str(),
-                       {output_directory + "/statistics.csv"},
+                       {output_directory + "/statistics.csv",
+                        output_directory + "/cliff_history.csv"},
                        loop.step,
                        loop.time);
       pcout << "  checkpoint at step " << loop.step << " (t = " << loop.time

@@ -120,6 +120,31 @@ namespace scarp
     }
 
 
+    template <int dim>
+    void
+    Simulation<dim>::write_cliff_history()
+    {
+      if (!outputs_enabled || !cliff || dim != 2 ||
+          !cliff_diagnostics.get_parameters().write_history)
+        return;
+      TimerOutput::Scope scope(timer, "cliff diagnostics");
+      const auto         points = gather_cliff_points();
+      if (Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      const auto profile =
+        cliff_diagnostics.surface_profile(points,
+                                          cliff->get_parameters().beach_level,
+                                          grid.domain().lower_bound(0),
+                                          grid.domain().upper_bound(0));
+      postprocess::CliffDiagnostics::append_history_row(
+        output_directory + "/cliff_history.csv",
+        loop.time,
+        last_report.kinetic_energy,
+        last_report.max_speed,
+        cliff_diagnostics.analyse(profile, points, *cliff));
+    }
+
+
     // Instantiations (the other members are in the other
     // simulation_*.cc files).
     template std::vector<postprocess::CliffDiagnostics::Particle>
@@ -130,5 +155,9 @@ namespace scarp
     Simulation<2>::cliff_snapshot(const std::string &tag);
     template void
     Simulation<3>::cliff_snapshot(const std::string &tag);
+    template void
+    Simulation<2>::write_cliff_history();
+    template void
+    Simulation<3>::write_cliff_history();
   } // namespace simulation
 } // namespace scarp

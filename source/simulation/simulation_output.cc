@@ -83,6 +83,7 @@ namespace scarp
                         mpm->nodal_velocity(),
                         loop.time,
                         loop.output_index);
+      write_cliff_history();
       ++loop.output_index;
     }
 

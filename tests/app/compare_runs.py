@@ -7,6 +7,7 @@ an uninterrupted run A and a run B that was stopped and resumed.
 * statistics.csv: the same columns and the same number of rows (a resumed
   run neither loses nor repeats rows), every value but the wall time within
   TOLERANCE times its column's largest magnitude;
+* cliff_history.csv, if A has it: likewise;
 * particles.pvd (and mesh.pvd): the same records, times within TOLERANCE;
 * summary.json: every number but wall times, speeds, rank counts and the
   non-local list counters within TOLERANCE (energies: times the largest
@@ -15,6 +16,7 @@ Prints the largest differences; exit status 1 when one is beyond.
 """
 import csv
 import json
+import math
 import os
 import sys
 import xml.etree.ElementTree as ElementTree
@@ -30,27 +32,42 @@ def note(difference, where):
         failures.append(f"{where}: relative difference {difference:.3e}")
 
 
-def statistics():
-    a = list(csv.reader(open(os.path.join(a_dir, "statistics.csv"))))
-    b = list(csv.reader(open(os.path.join(b_dir, "statistics.csv"))))
+def table(name, skip=("wall_time",)):
+    """A CSV of rows in time (statistics.csv, cliff_history.csv): A's rows
+    in B, every value within the tolerance of its column's largest
+    magnitude; a value without a number (nan) must be so in both."""
+    path_a = os.path.join(a_dir, name)
+    if name != "statistics.csv" and not os.path.exists(path_a):
+        return
+    if not os.path.exists(os.path.join(b_dir, name)):
+        failures.append(f"{name}: missing")
+        return
+    a = list(csv.reader(open(path_a)))
+    b = list(csv.reader(open(os.path.join(b_dir, name))))
     if a[0] != b[0]:
-        failures.append("statistics.csv: other columns")
+        failures.append(f"{name}: other columns")
         return
     if len(a) != len(b):
-        failures.append(f"statistics.csv: {len(b) - 1} rows, expected "
+        failures.append(f"{name}: {len(b) - 1} rows, expected "
                         f"{len(a) - 1} (rows lost or repeated)")
         return
     columns = a[0]
-    for c, name in enumerate(columns):
-        if name == "wall_time":
+    for c, column in enumerate(columns):
+        if column in skip:
             continue
-        scale = max(abs(float(row[c])) for row in a[1:])
+        values = [(float(ra[c]), float(rb[c]), ra[0])
+                  for ra, rb in zip(a[1:], b[1:])]
+        if any(math.isnan(x) != math.isnan(y) for x, y, _ in values):
+            failures.append(f"{name} {column}: nan in one run only")
+            continue
+        values = [v for v in values if not math.isnan(v[0])]
+        scale = max([abs(x) for x, _, _ in values], default=0.0)
         worst, where = 0.0, ""
-        for ra, rb in zip(a[1:], b[1:]):
-            d = abs(float(ra[c]) - float(rb[c])) / max(scale, 1e-300)
+        for x, y, key in values:
+            d = abs(x - y) / max(scale, 1e-300)
             if d > worst:
-                worst, where = d, f"statistics.csv {name} at step {ra[0]}"
-        note(worst, where or f"statistics.csv {name}")
+                worst, where = d, f"{name} {column} at {columns[0]} {key}"
+        note(worst, where or f"{name} {column}")
 
 
 def pvd(name):
@@ -104,7 +121,8 @@ def summary(a, b, path, scale=None):
             note(abs(value - other) / max(s, 1e-300), f"summary.json {where}")
 
 
-statistics()
+table("statistics.csv")
+table("cliff_history.csv")
 pvd("particles")
 pvd("mesh")
 summary(json.load(open(os.path.join(a_dir, "summary.json"))),

@@ -67,3 +67,46 @@ print(f"  stopped run: ended '{stop['ended']}', onset {onset_stop:.6f} s "
       f"last time {rows[-1]['time']}")
 sys.exit(0 if ok else 1)
 PY
+
+# cliff_history.csv: one row per particles output, at its time; the last,
+# at the end of the run, holds the numbers of summary.json (the same
+# diagnostics of the same state). A run stopped by SIGTERM in its collapse
+# (test hook SCARP_TEST_SIGTERM_AT_STEP) and resumed writes the same history
+# (restored from its checkpoint, then appended) and the same results: on one
+# rank to 1e-12 of each column's largest value, the bound the checkpoint
+# tests keep for chalk (tests/app/checkpoint.sh).
+/usr/bin/python3 - "$run/short_cliff_output" <<'PY'
+import csv, json, math, sys
+import xml.etree.ElementTree as ET
+out = sys.argv[1]
+rows = list(csv.DictReader(open(f"{out}/cliff_history.csv")))
+times = [float(e.get("timestep"))
+         for e in ET.parse(f"{out}/particles.pvd").getroot().iter("DataSet")]
+cliff = json.load(open(f"{out}/summary.json"))["cliff"]
+last = rows[-1]
+ok = (len(rows) == len(times)
+      and all(abs(float(r["time"]) - t) <= 1e-9 * max(1, t)
+              for r, t in zip(rows, times)))
+for column, key in (("debris_angle", "debris_angle_deg"),
+                    ("run_out", "run_out_m"),
+                    ("failed_area", "failed_area_m2"),
+                    ("failed_reference_area", "failed_reference_area_m2"),
+                    ("scarp_retreat", "scarp_retreat_m")):
+    # Both written with 10 significant digits or more.
+    ok = ok and math.isclose(float(last[column]), cliff[key], rel_tol=1e-9)
+# Before the collapse nothing has failed.
+ok = ok and float(rows[0]["failed_area"]) == 0.0
+print(f"  cliff_history.csv: {len(rows)} rows at {[r['time'] for r in rows]}, "
+      f"last: angle {last['debris_angle']}, failed area {last['failed_area']}")
+sys.exit(0 if ok else 1)
+PY
+rm -rf resumed_output
+cat > resumed.prm <<PRM
+include $src/tests/cliff/short_cliff.prm
+set Output directory = resumed_output
+PRM
+SCARP_TEST_SIGTERM_AT_STEP=3000 "$scarp" resumed.prm > resumed.log 2>&1 \
+  && { echo "the run was not stopped"; exit 1; }
+grep -q "interrupted by SIGTERM" resumed.log
+"$scarp" --resume resumed_output resumed.prm >> resumed.log 2>&1 || { tail -20 resumed.log; exit 1; }
+/usr/bin/python3 "$src/tests/app/compare_runs.py" short_cliff_output resumed_output 1e-12

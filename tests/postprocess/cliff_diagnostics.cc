@@ -13,8 +13,11 @@
 
 #include <scarp/postprocess/cliff_diagnostics.h>
 
+#include <cstdio>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <vector>
 
 #include "../scenes/check.h"
 
@@ -290,6 +293,45 @@ main()
     std::ifstream particles_in("joss_bay_particles.csv");
     std::getline(particles_in, line);
     CHECK(line == "x,y,damage,x0,y0,volume");
+
+    // The history: a header once, then one row per call; numbers exact in
+    // binary read back exactly, and a quantity without a value (no debris
+    // angle before the cliff fails) as nan.
+    std::remove("history.csv");
+    Diagnostics::Result settled;
+    settled.debris_angle          = 33.25;
+    settled.run_out               = 4.5;
+    settled.debris_toe            = 30.125;
+    settled.failed_area           = 58.375;
+    settled.failed_reference_area = 46.8125;
+    settled.n_failed_particles    = 1234;
+    settled.scarp_position        = 21.5;
+    settled.scarp_retreat         = 4.25;
+    Diagnostics::append_history_row("history.csv", 1.5, 20., 3., r);
+    Diagnostics::append_history_row("history.csv", 2.5, 10., 2., settled);
+    std::ifstream history("history.csv");
+    std::getline(history, line);
+    CHECK(line == "time,kinetic_energy,max_speed,debris_angle,run_out,"
+                  "debris_toe,failed_area,failed_reference_area,"
+                  "n_failed_particles,scarp_position,scarp_retreat");
+    std::vector<std::vector<double>> rows;
+    while (std::getline(history, line))
+      {
+        std::vector<double> row;
+        std::istringstream  fields(line);
+        std::string         field;
+        while (std::getline(fields, field, ','))
+          row.push_back(std::stod(field));
+        rows.push_back(row);
+      }
+    CHECK(rows.size() == 2);
+    CHECK(rows[0].size() == 11 && rows[1].size() == 11);
+    CHECK(std::isnan(rows[0][3]));
+    CHECK(rows[0][6] == 0.);
+    const std::vector<double> expected = {
+      2.5, 10., 2., 33.25, 4.5, 30.125, 58.375, 46.8125, 1234., 21.5, 4.25};
+    for (unsigned int k = 0; k < expected.size(); ++k)
+      CHECK(rows[1][k] == expected[k]);
   }
 
   // Parameters.

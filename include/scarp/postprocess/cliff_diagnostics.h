@@ -96,6 +96,9 @@ namespace scarp
         double fit_upper_fraction = 0.9;
         /// 0: two bins.
         double top_band = 0.;
+        /// Append the diagnostics to cliff_history.csv at every particle
+        /// output.
+        bool write_history = true;
       };
 
       /// @brief Free-surface heights on bins of equal width.
@@ -208,6 +211,25 @@ namespace scarp
       write_profile_csv(const std::string &filename,
                         const Profile     &profile,
                         const Result      *result = nullptr);
+
+      /// Appends one row of @p result at @p time to @p filename (the
+      /// history of a run: time, kinetic energy, largest speed, debris
+      /// angle, run-out, debris toe, failed area, failed area before it
+      /// moved, failed points, scarp position and retreat), with the
+      /// header line first when the file is new or empty.
+      static void
+      append_history_row(const std::string &filename,
+                         const double       time,
+                         const double       kinetic_energy,
+                         const double       max_speed,
+                         const Result      &result);
+
+      /// The settings.
+      const Parameters &
+      get_parameters() const
+      {
+        return parameters;
+      }
 
       /// Writes "x,y,damage,x0,y0,volume" per particle, for
       /// tools/plot_cliff.py.

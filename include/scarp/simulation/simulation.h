@@ -326,6 +326,10 @@ namespace scarp
       /// profile and the diagnostics, which go into the summary.
       void
       cliff_snapshot(const std::string &tag);
+      /// Append the cliff diagnostics of now to cliff_history.csv (with
+      /// every particle output; collective).
+      void
+      write_cliff_history();
 
       MPI_Comm            communicator;
       SceneLists          lists;
