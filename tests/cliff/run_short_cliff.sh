@@ -110,3 +110,16 @@ SCARP_TEST_SIGTERM_AT_STEP=3000 "$scarp" resumed.prm > resumed.log 2>&1 \
 grep -q "interrupted by SIGTERM" resumed.log
 "$scarp" --resume resumed_output resumed.prm >> resumed.log 2>&1 || { tail -20 resumed.log; exit 1; }
 /usr/bin/python3 "$src/tests/app/compare_runs.py" short_cliff_output resumed_output 1e-12
+
+# tools/plot_cliff_history.py: over the whole history (window 2 s > 1.6 s)
+# the failed area changes from 0 to the run's failed area (printed to 3
+# significant digits), and the picture is written.
+change=$(/usr/bin/python3 "$src/tools/plot_cliff_history.py" --window 2 \
+  --output history.png "short=$run/short_cliff_output" | awk -F'|' '/change over/ { gsub(/ /, "", $6); print $6 }')
+test -s history.png
+/usr/bin/python3 - "$run/short_cliff_output/summary.json" "$change" <<'PY'
+import json, sys
+area = json.load(open(sys.argv[1]))["cliff"]["failed_area_m2"]
+assert float(sys.argv[2]) == float(f"{area:.3g}"), (sys.argv[2], area)
+print(f"ok: plot_cliff_history.py, failed area changed by {sys.argv[2]} m^2")
+PY
