@@ -38,6 +38,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <set>
 
 namespace
 {
@@ -134,7 +135,7 @@ namespace
     // Where each point's cell level goes, over all steps.
     unsigned int n_to_finer = 0, n_to_coarser = 0, n_moved = 0, n_sent = 0;
     unsigned int n_local_steps = 0, n_full_steps = 0;
-    bool         same = true, followed = true;
+    bool         same = true, followed = true, gained_ok = true;
     // Without the compaction by the full sort (the test moves most points
     // every step; the runs of scarp a few in a thousand).
     PointMover<dim> mover(1e30);
@@ -180,7 +181,32 @@ namespace
               point.set_location(x);
             }
         full.sort_particles_into_subdomains_and_cells();
-        const bool local = mover.sort(moved, tria, MPI_COMM_WORLD);
+        // The cells of this rank that hold points before the sort.
+        const auto occupied = [&tria](const auto &handler) {
+          std::set<CellId> cells;
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned() && handler.n_particles_in_cell(cell))
+              cells.insert(cell->id());
+          return cells;
+        };
+        const std::set<CellId> held  = occupied(moved);
+        const bool             local = mover.sort(moved, tria, MPI_COMM_WORLD);
+        if (local)
+          {
+            // What MpmTransfer relies on to skip the walk over all cells:
+            // a cell holds points now only if it held some or gained some,
+            // and every cell that gained points is this rank's and holds
+            // them.
+            std::set<CellId> candidates = held;
+            for (const auto &cell : mover.cells_gained())
+              {
+                candidates.insert(cell->id());
+                gained_ok = gained_ok && cell->is_locally_owned() &&
+                            moved.n_particles_in_cell(cell) > 0;
+              }
+            for (const CellId &id : occupied(moved))
+              gained_ok = gained_ok && candidates.count(id) == 1;
+          }
         n_moved += mover.n_moved();
         n_sent += mover.n_sent();
         n_compacting_full +=
@@ -217,6 +243,9 @@ namespace
           where + "same points, order, reference locations and properties "
                   "in every cell as the full sort, bit for bit, every step "
                   "(with and without the compaction)");
+    check(gained_ok,
+          where + "after each move every cell with points held points "
+                  "before or is among the cells gained, which hold points");
     check(followed,
           where + "PointMover moves the points itself in every step but the "
                   "last, also those that change ranks");
