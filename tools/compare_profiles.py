@@ -30,7 +30,6 @@ Example:
 """
 
 import argparse
-import csv
 import json
 import math
 import os
@@ -97,14 +96,12 @@ def criterion(runs):
 
 
 def read_profile(path):
-    """Rows (x, y_initial, y_final) of a cliff_profile.csv."""
-    with open(path) as f:
-        lines = [line for line in f if not line.startswith("#")]
-    rows = list(csv.DictReader(lines))
-    x = [float(r["x"]) for r in rows]
-    y0 = [float(r["y_initial"]) for r in rows]
-    y1 = [float(r["y_final"]) for r in rows]
-    return x, y0, y1
+    """Rows (x, y_initial, y_final) of a cliff_profile.csv (read by
+    plot_cliff.read_profile, in the same directory)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_cliff
+    columns, _ = plot_cliff.read_profile(path)
+    return columns["x"], columns["y_initial"], columns["y_final"]
 
 
 def draw_particles(runs, filename, xlim=None):
