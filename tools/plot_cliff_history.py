@@ -37,10 +37,12 @@ def read_history(directory):
 
 def change_over(rows, name, window):
     """Largest minus smallest value of @name over the rows of the last
-    @window seconds (nan if fewer than two rows lie in it)."""
+    @window seconds (nan if fewer than two rows lie in it). Outputs fall
+    up to a time step after their nominal times: a row counts if it lies
+    within the window widened by 1 % of it."""
     end = rows[-1]["time"]
     values = [r[name] for r in rows
-              if r["time"] >= end - window - 1e-9 and not math.isnan(r[name])]
+              if r["time"] >= end - 1.01 * window and not math.isnan(r[name])]
     if len(values) < 2:
         return math.nan
     return max(values) - min(values)
