@@ -80,12 +80,8 @@ namespace scarp
         output_directory + "/cliff_" + tag + "_particles.csv", points);
       if (tag != "end")
         return;
-      const auto profile =
-        cliff_diagnostics.surface_profile(points,
-                                          cliff->get_parameters().beach_level,
-                                          grid.domain().lower_bound(0),
-                                          grid.domain().upper_bound(0));
-      const auto r = cliff_diagnostics.analyse(profile, points, *cliff);
+      const auto profile = cliff_surface_profile(points);
+      const auto r       = cliff_diagnostics.analyse(profile, points, *cliff);
       postprocess::CliffDiagnostics::write_profile_csv(
         output_directory + "/cliff_profile.csv", profile, &r);
       const double onset =
@@ -131,17 +127,27 @@ namespace scarp
       const auto         points = gather_cliff_points();
       if (Utilities::MPI::this_mpi_process(communicator) != 0)
         return;
-      const auto profile =
-        cliff_diagnostics.surface_profile(points,
-                                          cliff->get_parameters().beach_level,
-                                          grid.domain().lower_bound(0),
-                                          grid.domain().upper_bound(0));
       postprocess::CliffDiagnostics::append_history_row(
         output_directory + "/cliff_history.csv",
         loop.time,
         last_report.kinetic_energy,
         last_report.max_speed,
-        cliff_diagnostics.analyse(profile, points, *cliff));
+        cliff_diagnostics.analyse(cliff_surface_profile(points),
+                                  points,
+                                  *cliff));
+    }
+
+
+    template <int dim>
+    postprocess::CliffDiagnostics::Profile
+    Simulation<dim>::cliff_surface_profile(
+      const std::vector<postprocess::CliffDiagnostics::Particle> &points) const
+    {
+      return cliff_diagnostics.surface_profile(
+        points,
+        cliff->get_parameters().beach_level,
+        grid.domain().lower_bound(0),
+        grid.domain().upper_bound(0));
     }
 
 

@@ -326,6 +326,12 @@ namespace scarp
       /// profile and the diagnostics, which go into the summary.
       void
       cliff_snapshot(const std::string &tag);
+      /// The free-surface profiles of the gathered cliff @p points over the
+      /// whole mesh width (rank 0).
+      postprocess::CliffDiagnostics::Profile
+      cliff_surface_profile(
+        const std::vector<postprocess::CliffDiagnostics::Particle> &points)
+        const;
       /// Append the cliff diagnostics of now to cliff_history.csv (with
       /// every particle output; collective).
       void
