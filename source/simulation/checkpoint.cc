@@ -4,6 +4,7 @@
 #include <scarp/base/exceptions.h>
 #include <scarp/nonlocal/parameters.h>
 #include <scarp/simulation/checkpoint.h>
+#include <scarp/simulation/stage.h>
 
 #include <algorithm>
 #include <csignal>
@@ -61,8 +62,23 @@ namespace scarp
       /// @p defaults (the same declarations, unset), one per line with its
       /// subsection path: what a scene file really sets. Entries a later
       /// scarp adds (at their defaults) leave it unchanged.
+      /// @p line with the padding before " = " collapsed: ShortPRM pads
+      /// the names of a subsection to its longest, which a new, longer
+      /// entry would change.
       std::string
-      changed_entries(const std::string &text, const std::string &defaults)
+      without_padding(const std::string &line)
+      {
+        const auto equal = line.find(" = ");
+        if (equal == std::string::npos)
+          return line;
+        const auto name_end = line.find_last_not_of(' ', equal);
+        return line.substr(0, name_end + 1) + line.substr(equal);
+      }
+
+      std::string
+      changed_entries(const std::string &text,
+                      const std::string &defaults,
+                      const bool         keep_padding)
       {
         std::istringstream       a(text), b(defaults);
         std::string              line, default_line, out;
@@ -86,7 +102,8 @@ namespace scarp
               {
                 for (const auto &p : path)
                   out += p + "/";
-                out += trimmed + "\n";
+                out +=
+                  (keep_padding ? trimmed : without_padding(trimmed)) + "\n";
               }
           }
         return out;
@@ -207,15 +224,31 @@ namespace scarp
           prm.set(name, value);
         }
       prm.leave_subsection();
-      // The stages' end times: a resumed run may stop earlier or go on
-      // longer than the run that wrote the checkpoint (the end time only
-      // decides when the loop stops).
-      std::vector<std::string> end_times;
+      // The stages' end times and deposit criteria: a resumed run may stop
+      // earlier or go on longer than the run that wrote the checkpoint
+      // (they only decide when the loop stops). Set to their defaults.
+      std::vector<std::pair<std::string, std::string>> stage_free;
+      {
+        ParameterHandler fresh;
+        Stage::declare_parameters(fresh);
+        for (const std::string name : {"End time",
+                                       "End on deposit at rest",
+                                       "Deposit check interval",
+                                       "Deposit settle time",
+                                       "Deposit shift tolerance",
+                                       "Deposit area tolerance"})
+          stage_free.emplace_back(name, fresh.get(name));
+      }
+      std::vector<std::vector<std::string>> stage_saved;
       for (const auto &name : stage_names)
         {
           prm.enter_subsection("Stage " + name);
-          end_times.push_back(prm.get("End time"));
-          prm.set("End time", "1");
+          stage_saved.emplace_back();
+          for (const auto &[entry, value] : stage_free)
+            {
+              stage_saved.back().push_back(prm.get(entry));
+              prm.set(entry, value);
+            }
           prm.leave_subsection();
         }
       // The skin of the non-local lists changes the cost, not the result
@@ -245,14 +278,18 @@ namespace scarp
       for (std::size_t k = 0; k < stage_names.size(); ++k)
         {
           prm.enter_subsection("Stage " + stage_names[k]);
-          prm.set("End time", end_times[k]);
+          for (std::size_t e = 0; e < stage_free.size(); ++e)
+            prm.set(stage_free[e].first, stage_saved[k][e]);
           prm.leave_subsection();
         }
       prm.enter_subsection("Checkpoint");
       for (std::size_t k = 0; k < free_entries.size(); ++k)
         prm.set(free_entries[k].first, saved[k]);
       prm.leave_subsection();
-      scene_hash = fingerprint(changed_entries(text.str(), defaults));
+      scene_hash = fingerprint(changed_entries(text.str(), defaults, false));
+      // Checkpoints of scarp before 2026-12-05 hashed the padded lines.
+      legacy_scene_hash =
+        fingerprint(changed_entries(text.str(), defaults, true));
     }
 
 
@@ -512,11 +549,12 @@ namespace scarp
       if (dimension != dim)
         return "it holds a " + std::to_string(dimension) +
                "D run, this scene is " + std::to_string(dim) + "D.";
-      if (hash != scene_hash)
+      if (hash != scene_hash && hash != legacy_scene_hash)
         return "it was written for another scene (scene fingerprint " + hash +
                ", this scene's is " + scene_hash +
                "): every entry but those of <Checkpoint>, <Output "
-               "directory>, the stages' <End time> and <Non-local "
+               "directory>, the stages' <End time> and deposit criterion "
+               "(<End on deposit at rest>, <Deposit ...>) and <Non-local "
                "average/Skin distance fraction> must be the same as in the "
                "run that wrote it.";
       if (saved_properties != properties)

@@ -158,6 +158,7 @@ namespace scarp
               loop.stage.in_progress     = true;
               loop.mass_scaling.ended    = false;
               loop.mass_scaling.end_time = -1;
+              loop.deposit               = DepositRestState();
             }
           const double start_wall = wall_clock.wall_time();
           std::string  reason     = "end time";
@@ -196,6 +197,11 @@ namespace scarp
               if (stage.settle && stage_settled(stage))
                 {
                   reason = "kinetic energy settled";
+                  break;
+                }
+              if (stage.deposit_rest && deposit_settled(stage))
+                {
+                  reason = "deposit at rest";
                   break;
                 }
               checkpoint_if_due();

@@ -14,6 +14,7 @@
 #include <scarp/scenes/shape_factory.h>
 #include <scarp/simulation/simulation.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -139,6 +140,78 @@ namespace scarp
 
 
     template <int dim>
+    bool
+    Simulation<dim>::deposit_settled(const Stage &stage)
+    {
+      auto &state = loop.deposit;
+      if (!cliff || dim != 2 || loop.failure.onset_time < 0)
+        return false;
+      // The checks fall on multiples of the interval (as the outputs do
+      // on theirs), the first right after the onset.
+      if (state.next_check < 0)
+        state.next_check =
+          std::floor(loop.time / stage.deposit_check_interval) *
+          stage.deposit_check_interval;
+      if (loop.time < state.next_check * (1 - 1e-12))
+        return false;
+      while (state.next_check <= loop.time * (1 + 1e-12))
+        state.next_check += stage.deposit_check_interval;
+
+      TimerOutput::Scope scope(timer, "cliff diagnostics");
+      const auto         points = gather_cliff_points();
+      // Rank 0 measures; every rank then holds the same state (it goes
+      // into the checkpoints).
+      std::array<double, 5> measured{{0, 0, 0, 0, 0}};
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          const auto r =
+            cliff_diagnostics.analyse(cliff_surface_profile(points),
+                                      points,
+                                      *cliff);
+          // The toe or the scarp may be undefined (nan) in a measurement;
+          // nan against nan is no change.
+          const auto near = [](const double a, const double b, double tol) {
+            return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) <= tol;
+          };
+          const double tol = stage.deposit_position_tolerance;
+          const double rel = stage.deposit_area_tolerance;
+          // Nothing has failed yet (no point has moved further than the
+          // displacement threshold): the deposit is still to form.
+          const bool quiet =
+            r.failed_reference_area > 0. && state.since >= 0 &&
+            near(r.debris_toe, state.toe, tol) &&
+            near(r.scarp_position, state.scarp, tol) &&
+            near(r.failed_area, state.area, rel * std::abs(state.area)) &&
+            near(r.failed_reference_area,
+                 state.area_before,
+                 rel * std::abs(state.area_before));
+          if (r.failed_reference_area <= 0.)
+            measured = {{-1, 0, 0, 0, 0}};
+          else if (quiet)
+            measured = {{state.since,
+                         state.toe,
+                         state.scarp,
+                         state.area,
+                         state.area_before}};
+          else
+            measured = {{loop.time,
+                         r.debris_toe,
+                         r.scarp_position,
+                         r.failed_area,
+                         r.failed_reference_area}};
+        }
+      measured          = Utilities::MPI::broadcast(communicator, measured, 0);
+      state.since       = measured[0];
+      state.toe         = measured[1];
+      state.scarp       = measured[2];
+      state.area        = measured[3];
+      state.area_before = measured[4];
+      return state.since >= 0 &&
+             loop.time - state.since >= stage.deposit_settle_time * (1 - 1e-12);
+    }
+
+
+    template <int dim>
     postprocess::CliffDiagnostics::Profile
     Simulation<dim>::cliff_surface_profile(
       const std::vector<postprocess::CliffDiagnostics::Particle> &points) const
@@ -161,6 +234,10 @@ namespace scarp
     Simulation<2>::cliff_snapshot(const std::string &tag);
     template void
     Simulation<3>::cliff_snapshot(const std::string &tag);
+    template bool
+    Simulation<2>::deposit_settled(const Stage &stage);
+    template bool
+    Simulation<3>::deposit_settled(const Stage &stage);
     template void
     Simulation<2>::write_cliff_history();
     template void

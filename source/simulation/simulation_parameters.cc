@@ -405,6 +405,13 @@ namespace scarp
       for (const auto &body : bodies)
         if (body.cliff && !cliff)
           cliff = body.cliff.get();
+      for (const auto &stage : stages)
+        if (stage.deposit_rest && (!cliff || dim != 2))
+          throw ScarpError("Stage " + stage.name +
+                           ": <End on deposit at rest> measures the deposit "
+                           "of a cliff, but this scene has no body with "
+                           "<Shape> = cliff (2D); use <End on kinetic "
+                           "energy>.");
       prm.enter_subsection("Load balancing");
       balance_interval  = prm.get_integer("Check interval");
       balance_tolerance = prm.get_double("Imbalance tolerance");

@@ -27,6 +27,41 @@ namespace scarp
                         "0",
                         Patterns::Double(0.),
                         "See <End on kinetic energy> [s].");
+      prm.declare_entry(
+        "End on deposit at rest",
+        "false",
+        Patterns::Bool(),
+        "End the stage earlier, once the deposit of a cliff has stopped "
+        "changing: after the failure onset, the debris toe and the scarp "
+        "(cliff diagnostics) have each stayed within <Deposit position "
+        "tolerance> of where they were, and the failed area and the failed "
+        "area before it moved within <Deposit area tolerance> (relative), "
+        "for <Deposit settle time>. For collapses whose kinetic energy "
+        "hovers about its criterion (a few points jostling on the pile) "
+        "while nothing changes, and conversely to keep going while the "
+        "scarp still creeps back at low energy. Either criterion ends the "
+        "stage when both are on. Scenes with a cliff body (2D) only.");
+      prm.declare_entry("Deposit check interval",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "See <End on deposit at rest>: the deposit is "
+                        "measured every this much simulated time [s].");
+      prm.declare_entry("Deposit settle time",
+                        "1",
+                        Patterns::Double(0.),
+                        "See <End on deposit at rest> [s].");
+      prm.declare_entry("Deposit shift tolerance",
+                        "0.05",
+                        Patterns::Double(0.),
+                        "See <End on deposit at rest> [m]. The toe moves "
+                        "by whole bins of the cliff profile, so that any "
+                        "tolerance below the bin width means the toe has "
+                        "not moved at all.");
+      prm.declare_entry("Deposit area tolerance",
+                        "0.01",
+                        Patterns::Double(0.),
+                        "See <End on deposit at rest>: relative change of "
+                        "the failed areas.");
       prm.declare_entry("Damping type",
                         "none",
                         Patterns::Selection("none|viscous|local"),
@@ -87,10 +122,19 @@ namespace scarp
     void
     Stage::parse_parameters(ParameterHandler &prm)
     {
-      end_time               = prm.get_double("End time");
-      settle                 = prm.get_bool("End on kinetic energy");
-      kinetic_ratio          = prm.get_double("Kinetic energy ratio");
-      settle_time            = prm.get_double("Settle time");
+      end_time                   = prm.get_double("End time");
+      settle                     = prm.get_bool("End on kinetic energy");
+      kinetic_ratio              = prm.get_double("Kinetic energy ratio");
+      settle_time                = prm.get_double("Settle time");
+      deposit_rest               = prm.get_bool("End on deposit at rest");
+      deposit_check_interval     = prm.get_double("Deposit check interval");
+      deposit_settle_time        = prm.get_double("Deposit settle time");
+      deposit_position_tolerance = prm.get_double("Deposit shift tolerance");
+      deposit_area_tolerance     = prm.get_double("Deposit area tolerance");
+      if (deposit_rest && deposit_check_interval <= 0.)
+        throw ScarpError("Stage " + name +
+                         ": <Deposit check interval> must be positive with "
+                         "<End on deposit at rest>.");
       const std::string type = prm.get("Damping type");
       damping.type        = type == "viscous" ? transfer::Damping::Type::viscous
                             : type == "local" ? transfer::Damping::Type::local

@@ -164,6 +164,23 @@ subsection Body cliff
   end
 end"
 
+# The deposit rest criterion measures a cliff's deposit: a scene without a
+# cliff body refuses it rather than never ending on it.
+expect_line deposit_rest_without_cliff \
+  "Stage vibrate: <End on deposit at rest> measures the deposit of a cliff, but this scene has no body with <Shape> = cliff (2D); use <End on kinetic energy>." \
+"include $base
+subsection Stage vibrate
+  set End on deposit at rest = true
+end"
+
+expect_line deposit_check_interval_zero \
+  "Stage vibrate: <Deposit check interval> must be positive with <End on deposit at rest>." \
+"include $base
+subsection Stage vibrate
+  set End on deposit at rest = true
+  set Deposit check interval = 0
+end"
+
 # Includes resolve relative to the including file at any depth, and an
 # error names the file and line the user wrote: nested/a/top.prm includes
 # ../b/mid.prm, which includes leaf.prm (next to mid.prm, not the working

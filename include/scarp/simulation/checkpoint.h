@@ -160,10 +160,13 @@ namespace scarp
       std::string
       check(const std::string &directory) const;
 
-      MPI_Comm     communicator;
-      std::string  output_directory = "output";
-      std::string  resume_from;
-      std::string  scene_hash;
+      MPI_Comm    communicator;
+      std::string output_directory = "output";
+      std::string resume_from;
+      std::string scene_hash;
+      /// The fingerprint as scarp computed it before 2026-12-05 (the lines
+      /// as ShortPRM pads them), accepted on resume.
+      std::string  legacy_scene_hash;
       std::string  properties;
       double       wall_interval = 0;
       double       time_interval = 0;

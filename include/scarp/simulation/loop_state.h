@@ -97,6 +97,28 @@ namespace scarp
     };
 
     /**
+     * @brief The deposit rest criterion of the current stage
+     * (Stage::deposit_rest): when the deposit is measured next, and the
+     * measurement that opened the current quiet period (since < 0: none).
+     */
+    struct DepositRestState
+    {
+      double next_check  = -1;
+      double since       = -1;
+      double toe         = 0;
+      double scarp       = 0;
+      double area        = 0;
+      double area_before = 0;
+
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &next_check &since &toe &scarp &area &area_before;
+      }
+    };
+
+    /**
      * @brief Times of damage and failure (cliff scenes), -1 until they
      * happen.
      */
@@ -195,13 +217,18 @@ namespace scarp
       FailureTracking        failure;
       RunCounters            counters;
       ReferenceErrorTracking reference_error;
+      DepositRestState       deposit;
 
+      /// Version 1 added the deposit rest criterion; checkpoints of version
+      /// 0 load without a quiet period.
       template <class Archive>
       void
-      serialize(Archive &ar, const unsigned int)
+      serialize(Archive &ar, const unsigned int version)
       {
         ar &time &dt &step &output_index                   &next_output;
         ar &stage &energy &mass_scaling &failure &counters &reference_error;
+        if (version >= 1)
+          ar &deposit;
       }
     };
   } // namespace simulation
@@ -209,5 +236,6 @@ namespace scarp
 
 BOOST_CLASS_VERSION(scarp::simulation::RunCounters, 1)
 BOOST_CLASS_VERSION(scarp::simulation::EnergyLedger, 1)
+BOOST_CLASS_VERSION(scarp::simulation::LoopState, 1)
 
 #endif

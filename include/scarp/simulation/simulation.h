@@ -245,6 +245,15 @@ namespace scarp
       /// the settle time (updates loop.stage).
       bool
       stage_settled(const Stage &stage);
+      /// The deposit criterion of @p stage after a step (cliff scenes,
+      /// after the failure onset): every Stage::deposit_check_interval,
+      /// measure the debris toe, the scarp and the failed areas; a change
+      /// beyond the tolerances opens a new quiet period, and the stage is
+      /// settled once one has lasted Stage::deposit_settle_time. The
+      /// measurements drift-proof: each is against the start of the
+      /// period, not the last check. Updates loop.deposit; collective.
+      bool
+      deposit_settled(const Stage &stage);
       /// Mesh/Refinement/Set-up passes: run the first stage without output,
       /// and after a pass that refined the mesh discard the points, seed
       /// the bodies anew on the refined mesh and reset the loop state.

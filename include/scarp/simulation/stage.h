@@ -20,11 +20,18 @@ namespace scarp
      */
     struct Stage
     {
-      std::string       name;
-      double            end_time      = 1.;
-      bool              settle        = false;
-      double            kinetic_ratio = 1e-4;
-      double            settle_time   = 0.;
+      std::string name;
+      double      end_time      = 1.;
+      bool        settle        = false;
+      double      kinetic_ratio = 1e-4;
+      double      settle_time   = 0.;
+      /// End once the cliff's deposit has stopped changing (see
+      /// Simulation::deposit_settled()).
+      bool              deposit_rest               = false;
+      double            deposit_check_interval     = 0.1;
+      double            deposit_settle_time        = 1.;
+      double            deposit_position_tolerance = 0.05;
+      double            deposit_area_tolerance     = 0.01;
       transfer::Damping damping;
       bool              plasticity         = true;
       bool              damage             = true;
