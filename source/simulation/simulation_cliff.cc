@@ -173,7 +173,7 @@ namespace scarp
           const auto near = [](const double a, const double b, double tol) {
             return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) <= tol;
           };
-          const double tol = stage.deposit_position_tolerance;
+          const double tol = stage.deposit_shift_tolerance;
           const double rel = stage.deposit_area_tolerance;
           // Nothing has failed yet (no point has moved further than the
           // displacement threshold): the deposit is still to form.

@@ -122,15 +122,15 @@ namespace scarp
     void
     Stage::parse_parameters(ParameterHandler &prm)
     {
-      end_time                   = prm.get_double("End time");
-      settle                     = prm.get_bool("End on kinetic energy");
-      kinetic_ratio              = prm.get_double("Kinetic energy ratio");
-      settle_time                = prm.get_double("Settle time");
-      deposit_rest               = prm.get_bool("End on deposit at rest");
-      deposit_check_interval     = prm.get_double("Deposit check interval");
-      deposit_settle_time        = prm.get_double("Deposit settle time");
-      deposit_position_tolerance = prm.get_double("Deposit shift tolerance");
-      deposit_area_tolerance     = prm.get_double("Deposit area tolerance");
+      end_time                = prm.get_double("End time");
+      settle                  = prm.get_bool("End on kinetic energy");
+      kinetic_ratio           = prm.get_double("Kinetic energy ratio");
+      settle_time             = prm.get_double("Settle time");
+      deposit_rest            = prm.get_bool("End on deposit at rest");
+      deposit_check_interval  = prm.get_double("Deposit check interval");
+      deposit_settle_time     = prm.get_double("Deposit settle time");
+      deposit_shift_tolerance = prm.get_double("Deposit shift tolerance");
+      deposit_area_tolerance  = prm.get_double("Deposit area tolerance");
       if (deposit_rest && deposit_check_interval <= 0.)
         throw ScarpError("Stage " + name +
                          ": <Deposit check interval> must be positive with "

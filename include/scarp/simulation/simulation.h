@@ -249,9 +249,10 @@ namespace scarp
       /// after the failure onset): every Stage::deposit_check_interval,
       /// measure the debris toe, the scarp and the failed areas; a change
       /// beyond the tolerances opens a new quiet period, and the stage is
-      /// settled once one has lasted Stage::deposit_settle_time. The
-      /// measurements drift-proof: each is against the start of the
-      /// period, not the last check. Updates loop.deposit; collective.
+      /// settled once one has lasted Stage::deposit_settle_time. Each
+      /// measurement is compared with the one that opened the period, not
+      /// with the last, so that a slow creep adds up and is caught. Updates
+      /// loop.deposit; collective.
       bool
       deposit_settled(const Stage &stage);
       /// Mesh/Refinement/Set-up passes: run the first stage without output,

@@ -27,11 +27,11 @@ namespace scarp
       double      settle_time   = 0.;
       /// End once the cliff's deposit has stopped changing (see
       /// Simulation::deposit_settled()).
-      bool              deposit_rest               = false;
-      double            deposit_check_interval     = 0.1;
-      double            deposit_settle_time        = 1.;
-      double            deposit_position_tolerance = 0.05;
-      double            deposit_area_tolerance     = 0.01;
+      bool              deposit_rest            = false;
+      double            deposit_check_interval  = 0.1;
+      double            deposit_settle_time     = 1.;
+      double            deposit_shift_tolerance = 0.05;
+      double            deposit_area_tolerance  = 0.01;
       transfer::Damping damping;
       bool              plasticity         = true;
       bool              damage             = true;
