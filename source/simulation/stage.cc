@@ -33,7 +33,7 @@ namespace scarp
         Patterns::Bool(),
         "End the stage earlier, once the deposit of a cliff has stopped "
         "changing: after the failure onset, the debris toe and the scarp "
-        "(cliff diagnostics) have each stayed within <Deposit position "
+        "(cliff diagnostics) have each stayed within <Deposit shift "
         "tolerance> of where they were, and the failed area and the failed "
         "area before it moved within <Deposit area tolerance> (relative), "
         "for <Deposit settle time>. For collapses whose kinetic energy "
