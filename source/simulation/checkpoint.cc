@@ -58,10 +58,6 @@ namespace scarp
         return s.str();
       }
 
-      /// The entries of @p text (ShortPRM) whose value differs from
-      /// @p defaults (the same declarations, unset), one per line with its
-      /// subsection path: what a scene file really sets. Entries a later
-      /// scarp adds (at their defaults) leave it unchanged.
       /// @p line with the padding before " = " collapsed: ShortPRM pads
       /// the names of a subsection to its longest, which a new, longer
       /// entry would change.
@@ -75,6 +71,11 @@ namespace scarp
         return line.substr(0, name_end + 1) + line.substr(equal);
       }
 
+      /// The entries of @p text (ShortPRM) whose value differs from
+      /// @p defaults (the same declarations, unset), one per line with its
+      /// subsection path: what a scene file really sets. Entries a later
+      /// scarp adds (at their defaults) leave it unchanged. @p keep_padding:
+      /// the lines as ShortPRM pads them (the fingerprint before 2026-12-05).
       std::string
       changed_entries(const std::string &text,
                       const std::string &defaults,
