@@ -723,7 +723,7 @@ namespace scarp
     {
       auto                   &pool   = particle_handler.get_property_pool();
       unsigned int            k      = 0; // point counter
-      const double            alpha  = parameters.flip_fraction;
+      const double            alpha  = parameters.flip_weight(dt);
       const bool              apic   = layout.has_affine;
       const BoundingBox<dim> &domain = grid.domain();
       material_scratch.resize(materials.size());

@@ -1,3 +1,4 @@
+#include <scarp/base/exceptions.h>
 #include <scarp/transfer/transfer_parameters.h>
 
 namespace scarp
@@ -20,7 +21,22 @@ namespace scarp
                         "0.99",
                         Patterns::Double(0., 1.),
                         "With FLIP: weight of the FLIP increment; the rest is "
-                        "PIC (1 = pure FLIP, 0 = PIC).");
+                        "PIC (1 = pure FLIP, 0 = PIC). It is the share of "
+                        "every step, so the PIC share per second, and with it "
+                        "the transfer's dissipation, grows as 1/dt: a smaller "
+                        "<CFL number> or finer cells damp more "
+                        "(doc/user_guide.md, \"The PIC share per unit of "
+                        "time\").");
+      prm.declare_entry(
+        "PIC time scale",
+        "0",
+        Patterns::Double(0.),
+        "With FLIP and a value T > 0 [s]: the PIC share of a step of length "
+        "dt is 1 - exp(-dt/T) instead of 1 - <FLIP fraction>, so that the "
+        "points' velocities relax towards the grid's at the rate 1/T of "
+        "simulated time whatever the time step (the FLIP fraction is then "
+        "not used and must be left at its default). 0: off. Refused with "
+        "PIC and APIC.");
       prm.declare_entry("Update scheme",
                         "MUSL",
                         Patterns::Selection("USL|MUSL"),
@@ -74,13 +90,23 @@ namespace scarp
       const std::string transfer = prm.get("Velocity transfer");
       velocity_transfer =
         transfer == "APIC" ? VelocityTransfer::apic : VelocityTransfer::flip;
-      flip_fraction = transfer == "PIC" ? 0. : prm.get_double("FLIP fraction");
-      scheme        = prm.get("Update scheme") == "USL" ? UpdateScheme::usl
-                                                        : UpdateScheme::musl;
-      mass_cutoff   = prm.get_double("Small mass cutoff");
-      shape_functions      = prm.get("Shape functions") == "GIMP"
-                               ? ShapeFunctions::gimp
-                               : ShapeFunctions::q1;
+      flip_fraction  = transfer == "PIC" ? 0. : prm.get_double("FLIP fraction");
+      pic_time_scale = prm.get_double("PIC time scale");
+      if (pic_time_scale > 0 && transfer != "FLIP")
+        throw ScarpError("Transfer: <PIC time scale> sets the PIC share of "
+                         "the FLIP transfer; it cannot be used with "
+                         "<Velocity transfer> = " +
+                         transfer + ".");
+      if (pic_time_scale > 0 && prm.get_double("FLIP fraction") != 0.99)
+        throw ScarpError("Transfer: set either <FLIP fraction> (a PIC share "
+                         "per step) or <PIC time scale> (a PIC share per "
+                         "unit of time), not both.");
+      scheme          = prm.get("Update scheme") == "USL" ? UpdateScheme::usl
+                                                          : UpdateScheme::musl;
+      mass_cutoff     = prm.get_double("Small mass cutoff");
+      shape_functions = prm.get("Shape functions") == "GIMP"
+                          ? ShapeFunctions::gimp
+                          : ShapeFunctions::q1;
       volumetric_averaging = prm.get("Volumetric averaging") == "F-bar"
                                ? VolumetricAveraging::f_bar
                                : VolumetricAveraging::none;

@@ -308,6 +308,126 @@ namespace
             message.find("damage") != std::string::npos,
           "adaptive refinement without damage stops with a clear message");
   }
+  /// Four points in one Q1 cell (2 per direction, at 1/4 and 3/4) moving
+  /// apart in x, +v0 on the left, -v0 on the right, and nothing to push
+  /// them (no gravity, a modulus so small that the stress stays below
+  /// 1e-12 of the momentum's change): the grid holds +-v0/2 at its nodes
+  /// and gives each point back v_grid = v0/4 of its own velocity, and the
+  /// FLIP increment is zero. Each step then scales every velocity by
+  /// f = w + (1 - w)/4, w the FLIP weight of the step.
+  std::string
+  spreading_cell(const double dt, const std::string &blend)
+  {
+    return "set Dimension = 2\nset Materials = m\nset Bodies = b\n"
+           "set Stages = run\nsubsection Mesh\n  set Lower corner = 0, 0\n"
+           "  set Upper corner = 1, 1\n  set Cell size = 1\n"
+           "  subsection Boundary conditions\n    set Left = free\n"
+           "    set Right = free\n    set Bottom = free\n    set Top = free\n"
+           "  end\nend\nsubsection Material m\n  set Model = linear elastic\n"
+           "  set Density = 1\n  subsection Elasticity\n"
+           "    set Young's modulus = 1e-6\n    set Poisson's ratio = 0\n"
+           "  end\nend\nsubsection Body b\n  set Material = m\n"
+           "  set Particles per cell = 2\n  set Shape = box\n"
+           "  set Box corners = 0, 0, 1, 1\n  subsection Initial velocity\n"
+           "    set Function expression = if(x < 0.5, 1e-6, -1e-6); 0\n"
+           "  end\nend\nsubsection Physics\n  set Gravity = 0, 0\nend\n"
+           "subsection Time\n  set Maximum time step = " +
+           num(dt) +
+           "\nend\nsubsection Stage run\n  set End time = 1\nend\n"
+           "subsection Transfer\n  set Shape functions = Q1\n"
+           "  set Update scheme = MUSL\n" +
+           blend + "end\n";
+  }
+
+  // <PIC time scale> T: the PIC share of a step is 1 - exp(-dt/T), so the
+  // velocities of the spreading cell decay as f^n with
+  // f = 1 - 3/4 (1 - exp(-dt/T)), close to exp(-3/4 t/T) whatever dt; with
+  // a <FLIP fraction> w the decay is (w + (1-w)/4)^n, which depends on dt
+  // at a fixed time (0.9925^100 = 0.47 against 0.9925^200 = 0.22 below).
+  // Tolerances: 1e-9 against the discrete law (the neglected stress and
+  // the points' motion, ~1e-12, and round-off over 200 steps); 2e-3
+  // between the two time steps under T (the O(dt/T) term of ln f,
+  // 3/32 (dt/T) t/T = 9.4e-4 at dt = T/100). The transfer's dissipation
+  // must be the kinetic energy lost.
+  void
+  pic_time_scale()
+  {
+    const double T = 0.01, t_end = 0.01;
+    double       decay_time_scale[2], decay_fraction[2];
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        const double       dt = T / (100. * (k + 1));
+        const unsigned int n  = 100 * (k + 1);
+        for (const bool per_time : {true, false})
+          {
+            auto sim = make_scene<2>(
+              spreading_cell(dt,
+                             per_time
+                               ? "  set PIC time scale = " + num(T) + "\n"
+                               : "  set FLIP fraction = 0.99\n"));
+            const auto  &layout = sim->property_layout();
+            const double E0     = sim->measure().kinetic_energy;
+            sim->run_until(t_end);
+            const double v =
+              max_over_points<2>(*sim, [&](const double *p, const Point<2> &x) {
+                return x[0] < 0.5 ? p[layout.velocity] : -1e300;
+              });
+            const double w        = per_time ? std::exp(-dt / T) : 0.99;
+            const double f        = w + (1 - w) / 4;
+            const double expected = 1e-6 * std::pow(f, n);
+            const double E        = sim->measure().kinetic_energy;
+            out() << "  " << (per_time ? "PIC time scale" : "FLIP fraction")
+                  << ", dt = " << dt << ": " << sim->loop_state().step
+                  << " steps, v/v0 = " << v / 1e-6 << " (expected "
+                  << expected / 1e-6 << "), kinetic energy lost " << E0 - E
+                  << ", transfer dissipation "
+                  << sim->transfer_dissipation_total() << std::endl;
+            check(sim->loop_state().step == n, "the expected steps");
+            check(std::abs(v - expected) < 1e-9 * 1e-6,
+                  "velocity decays by f per step");
+            check(std::abs(sim->transfer_dissipation_total() - (E0 - E)) <
+                    1e-9 * E0,
+                  "transfer dissipation = kinetic energy lost");
+            (per_time ? decay_time_scale : decay_fraction)[k] = v / 1e-6;
+          }
+      }
+    out() << "  decay at t = T: PIC time scale " << decay_time_scale[0] << ", "
+          << decay_time_scale[1] << " (exp(-3/4) = " << std::exp(-0.75)
+          << "); FLIP fraction " << decay_fraction[0] << ", "
+          << decay_fraction[1] << std::endl;
+    check(std::abs(decay_time_scale[0] - decay_time_scale[1]) <
+            2e-3 * decay_time_scale[1],
+          "under a PIC time scale the decay does not depend on dt");
+    check(std::abs(decay_time_scale[1] - std::exp(-0.75)) <
+            2e-3 * std::exp(-0.75),
+          "and approaches exp(-3/4 t/T)");
+    check(decay_fraction[0] > 2 * decay_fraction[1],
+          "under a FLIP fraction half the step damps more than twice as much");
+  }
+
+  // The PIC time scale sets the share of the FLIP transfer: refused with
+  // APIC, and together with a FLIP fraction.
+  void
+  pic_time_scale_refused()
+  {
+    for (const std::string blend :
+         {"  set Velocity transfer = APIC\n  set PIC time scale = 0.01\n",
+          "  set FLIP fraction = 0.95\n  set PIC time scale = 0.01\n"})
+      {
+        std::string message;
+        try
+          {
+            make_scene<2>(spreading_cell(1e-4, blend));
+          }
+        catch (const scarp::ScarpError &e)
+          {
+            message = e.what();
+          }
+        out() << "  message: " << message << std::endl;
+        check(message.find("PIC time scale") != std::string::npos,
+              "refused with a message naming <PIC time scale>");
+      }
+  }
 } // namespace
 
 int
@@ -321,5 +441,7 @@ main(int argc, char **argv)
                     {"gimp_crossing", gimp_crossing},
                     {"unstable_cfl", unstable_cfl},
                     {"mms_band_order", mms_band_order},
-                    {"refinement_without_damage", refinement_without_damage}});
+                    {"refinement_without_damage", refinement_without_damage},
+                    {"pic_time_scale", pic_time_scale},
+                    {"pic_time_scale_refused", pic_time_scale_refused}});
 }

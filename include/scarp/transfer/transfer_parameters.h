@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
+
 namespace scarp
 {
   namespace transfer
@@ -45,8 +47,21 @@ namespace scarp
      */
     struct TransferParameters
     {
-      VelocityTransfer    velocity_transfer    = VelocityTransfer::flip;
-      double              flip_fraction        = 0.99;
+      /// The FLIP weight of a step of length @p dt: <FLIP fraction>, or
+      /// exp(-dt / <PIC time scale>) when that is set (a PIC share per unit
+      /// of time, whatever the time step).
+      double
+      flip_weight(const double dt) const
+      {
+        return pic_time_scale > 0 ? std::exp(-dt / pic_time_scale)
+                                  : flip_fraction;
+      }
+
+      VelocityTransfer velocity_transfer = VelocityTransfer::flip;
+      double           flip_fraction     = 0.99;
+      /// With FLIP and > 0: the PIC share of a step of length dt is
+      /// 1 - exp(-dt / pic_time_scale) instead of 1 - flip_fraction.
+      double              pic_time_scale       = 0;
       UpdateScheme        scheme               = UpdateScheme::musl;
       double              mass_cutoff          = 1e-5;
       ShapeFunctions      shape_functions      = ShapeFunctions::q1;
