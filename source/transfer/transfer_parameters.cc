@@ -17,6 +17,7 @@ namespace scarp
                         "velocity increment and PIC, see FLIP fraction) or "
                         "APIC (affine PIC: carries the velocity gradient; "
                         "conserves angular momentum).");
+      // The string of default_flip_fraction.
       prm.declare_entry("FLIP fraction",
                         "0.99",
                         Patterns::Double(0., 1.),
@@ -97,7 +98,8 @@ namespace scarp
                          "the FLIP transfer; it cannot be used with "
                          "<Velocity transfer> = " +
                          transfer + ".");
-      if (pic_time_scale > 0 && prm.get_double("FLIP fraction") != 0.99)
+      if (pic_time_scale > 0 &&
+          prm.get_double("FLIP fraction") != default_flip_fraction)
         throw ScarpError("Transfer: set either <FLIP fraction> (a PIC share "
                          "per step) or <PIC time scale> (a PIC share per "
                          "unit of time), not both.");

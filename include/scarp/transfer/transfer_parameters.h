@@ -57,8 +57,11 @@ namespace scarp
                                   : flip_fraction;
       }
 
+      /// The default of <FLIP fraction> (its declaration writes the same).
+      static constexpr double default_flip_fraction = 0.99;
+
       VelocityTransfer velocity_transfer = VelocityTransfer::flip;
-      double           flip_fraction     = 0.99;
+      double           flip_fraction     = default_flip_fraction;
       /// With FLIP and > 0: the PIC share of a step of length dt is
       /// 1 - exp(-dt / pic_time_scale) instead of 1 - flip_fraction.
       double              pic_time_scale       = 0;
