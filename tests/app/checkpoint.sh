@@ -275,7 +275,12 @@ case "$case" in
     mkdir -p old; cp -r "$fixture/checkpoint" old/checkpoint
     expect_status "$(run full 1)" 0 "run in one go"
     expect_status "$(run old 1 --resume old/checkpoint)" 0 "the old checkpoint resumed"
-    /usr/bin/python3 "$compare" full old 1e-12 || fails=$((fails + 1))
+    # The rows up to step 50 and the state come from the older build: a
+    # later change of rounding (the closed-form plane exponential of
+    # 2026-12-05) moves them by round-off, which this column amplifies to
+    # 1e-11..1.2e-10 (doc/testing.md), so 1e-9 as for a resume on another
+    # rank count.
+    /usr/bin/python3 "$compare" full old 1e-9 || fails=$((fails + 1))
     ;;
   kill)
     elastic_scene full > full.prm

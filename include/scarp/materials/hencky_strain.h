@@ -27,17 +27,36 @@ namespace scarp
                         const SymmetricTensor<2, 3> &eps_e_n)
     {
       const SymmetricTensor<2, 3> b_n = exp_symmetric(2. * eps_e_n);
-      // dF b_n dF^T, symmetric by construction; build it symmetrically.
-      const Tensor<2, 3>    Fb = delta_F * Tensor<2, 3>(b_n);
-      SymmetricTensor<2, 3> b_trial;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = i; j < 3; ++j)
-          {
-            double v = 0.;
-            for (unsigned int k = 0; k < 3; ++k)
-              v += Fb[i][k] * delta_F[j][k];
-            b_trial[i][j] = v;
-          }
+      SymmetricTensor<2, 3>       b_trial;
+      if (b_n[0][2] == 0. && b_n[1][2] == 0. && delta_F[0][2] == 0. &&
+          delta_F[1][2] == 0. && delta_F[2][0] == 0. && delta_F[2][1] == 0.)
+        {
+          // Plane strain: the in-plane block and zz only; the same sums as
+          // the general product below without its zero terms, so the same
+          // numbers.
+          double Fb[2][2];
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int k = 0; k < 2; ++k)
+              Fb[i][k] = delta_F[i][0] * b_n[0][k] + delta_F[i][1] * b_n[1][k];
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int j = i; j < 2; ++j)
+              b_trial[i][j] =
+                Fb[i][0] * delta_F[j][0] + Fb[i][1] * delta_F[j][1];
+          b_trial[2][2] = delta_F[2][2] * b_n[2][2] * delta_F[2][2];
+        }
+      else
+        {
+          // dF b_n dF^T, symmetric by construction; build it symmetrically.
+          const Tensor<2, 3> Fb = delta_F * Tensor<2, 3>(b_n);
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = i; j < 3; ++j)
+              {
+                double v = 0.;
+                for (unsigned int k = 0; k < 3; ++k)
+                  v += Fb[i][k] * delta_F[j][k];
+                b_trial[i][j] = v;
+              }
+        }
       SpectralDecomposition s = spectral_decomposition(b_trial);
       for (double &v : s.values)
         v = 0.5 * std::log(v);

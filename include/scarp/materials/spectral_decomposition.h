@@ -146,6 +146,35 @@ namespace scarp
     inline SymmetricTensor<2, 3>
     exp_symmetric(const SymmetricTensor<2, 3> &A)
     {
+      if (A[0][2] == 0. && A[1][2] == 0.)
+        {
+          // Plane strain: the in-plane block in closed form without its
+          // eigenvectors, exp(A) = (e1 + e2)/2 I + (e1 - e2)/2 (A - m I)/r
+          // with e1,2 = exp(m +- r); e1 - e2 = exp(m - r) expm1(2 r) keeps
+          // the digits that the difference of the two exponentials loses
+          // when r is small. Half the cost of decompose-and-compose.
+          const double          mean  = 0.5 * (A[0][0] + A[1][1]);
+          const double          half  = 0.5 * (A[0][0] - A[1][1]);
+          const double          b     = A[0][1];
+          const double          scale = std::max(std::abs(half), std::abs(b));
+          SymmetricTensor<2, 3> E;
+          E[2][2] = std::exp(A[2][2]);
+          if (scale == 0.)
+            {
+              E[0][0] = E[1][1] = std::exp(mean);
+              return E;
+            }
+          // Scaled as in spectral_decomposition(): b may be ~1e-160.
+          const double hs = half / scale, bs = b / scale;
+          const double rs    = std::sqrt(hs * hs + bs * bs);
+          const double lower = std::exp(mean - scale * rs);
+          const double w     = 0.5 * lower * std::expm1(2. * scale * rs);
+          const double sum   = lower + w;
+          E[0][0]            = sum + w * (hs / rs);
+          E[1][1]            = sum - w * (hs / rs);
+          E[0][1]            = w * (bs / rs);
+          return E;
+        }
       SpectralDecomposition s = spectral_decomposition(A);
       for (double &v : s.values)
         v = std::exp(v);
