@@ -30,6 +30,31 @@ namespace scarp
       std::array<Tensor<1, 3>, 3> vectors;
     };
 
+    /**
+     * @brief The in-plane 2x2 block of a plane tensor (xz = yz = 0) as
+     * mean + scale (hs, bs; bs, -hs), with scale = max(|half|, |b|) and
+     * rs = |(hs, bs)|, so that its eigenvalues are mean +- scale rs.
+     *
+     * Scaled because the off-diagonal of a nearly isotropic tensor can be
+     * ~1e-160, whose square underflows. hs, bs and rs are NaN for scale = 0
+     * (a diagonal block), which callers treat first.
+     */
+    struct PlaneBlock
+    {
+      double mean, half, b, scale, hs, bs, rs;
+
+      explicit PlaneBlock(const SymmetricTensor<2, 3> &A)
+        : mean(0.5 * (A[0][0] + A[1][1]))
+        , half(0.5 * (A[0][0] - A[1][1]))
+        , b(A[0][1])
+        , scale(std::max(std::abs(half), std::abs(b)))
+        , hs(half / scale)
+        , bs(b / scale)
+        , rs(std::sqrt(hs * hs + bs * bs))
+      {
+      }
+    };
+
     /// Spectral decomposition of a symmetric 3x3 tensor (deal.II's
     /// eigenvectors() with the QL implicit shift method: accurate also for
     /// repeated eigenvalues, which occur on every Mohr-Coulomb edge).
@@ -64,16 +89,11 @@ namespace scarp
           // Plane strain keeps xz = yz = 0 exactly: the in-plane 2x2 block
           // has a closed-form decomposition (about ten times cheaper than
           // the iterative 3x3 one, and exact for repeated eigenvalues).
-          const double mean = 0.5 * (A[0][0] + A[1][1]);
-          const double half = 0.5 * (A[0][0] - A[1][1]);
-          const double b    = A[0][1];
-          // Scaled by the larger of |half|, |b| (> 0 here, as b != 0): the
-          // off-diagonal of a nearly isotropic tensor can be ~1e-160, whose
-          // square underflows.
-          const double scale = std::max(std::abs(half), std::abs(b));
-          const double hs = half / scale, bs = b / scale;
-          const double rs     = std::sqrt(hs * hs + bs * bs);
-          const double radius = scale * rs;
+          // scale > 0 here, as b != 0.
+          const PlaneBlock block(A);
+          const double     mean = block.mean, hs = block.hs, bs = block.bs,
+                       rs     = block.rs;
+          const double radius = block.scale * rs;
           // Unit eigenvector (c, s) of the larger eigenvalue without trig:
           // of the two parallel candidates (half + r, b) and (b, r - half)
           // take the one without cancellation; c >= 0 as with atan2.
@@ -153,26 +173,21 @@ namespace scarp
           // with e1,2 = exp(m +- r); e1 - e2 = exp(m - r) expm1(2 r) keeps
           // the digits that the difference of the two exponentials loses
           // when r is small. Half the cost of decompose-and-compose.
-          const double          mean  = 0.5 * (A[0][0] + A[1][1]);
-          const double          half  = 0.5 * (A[0][0] - A[1][1]);
-          const double          b     = A[0][1];
-          const double          scale = std::max(std::abs(half), std::abs(b));
+          const PlaneBlock      block(A);
           SymmetricTensor<2, 3> E;
           E[2][2] = std::exp(A[2][2]);
-          if (scale == 0.)
+          if (block.scale == 0.)
             {
-              E[0][0] = E[1][1] = std::exp(mean);
+              E[0][0] = E[1][1] = std::exp(block.mean);
               return E;
             }
-          // Scaled as in spectral_decomposition(): b may be ~1e-160.
-          const double hs = half / scale, bs = b / scale;
-          const double rs    = std::sqrt(hs * hs + bs * bs);
-          const double lower = std::exp(mean - scale * rs);
-          const double w     = 0.5 * lower * std::expm1(2. * scale * rs);
-          const double sum   = lower + w;
-          E[0][0]            = sum + w * (hs / rs);
-          E[1][1]            = sum - w * (hs / rs);
-          E[0][1]            = w * (bs / rs);
+          const double radius = block.scale * block.rs;
+          const double lower  = std::exp(block.mean - radius);
+          const double w      = 0.5 * lower * std::expm1(2. * radius);
+          const double sum    = lower + w;
+          E[0][0]             = sum + w * (block.hs / block.rs);
+          E[1][1]             = sum - w * (block.hs / block.rs);
+          E[0][1]             = w * (block.bs / block.rs);
           return E;
         }
       SpectralDecomposition s = spectral_decomposition(A);
