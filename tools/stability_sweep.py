@@ -183,7 +183,8 @@ def classify(text):
                        ("j <= 0", "J<=0"), ("distortion", "J<=0"),
                        ("more than a cell", "too fast"),
                        ("leaves the background", "left mesh"),
-                       ("maximum steps", "max steps")):
+                       ("maximum steps", "max steps"),
+                       ("is refused", "refused")):
         if key in t:
             return label
     return "error"

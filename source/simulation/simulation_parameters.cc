@@ -366,6 +366,21 @@ namespace scarp
       transfer_parameters.parse_parameters(prm);
       any_apic = transfer_parameters.velocity_transfer ==
                  transfer::VelocityTransfer::apic;
+      // APIC is verified on elastic problems only. In the flows of plastic
+      // or damaging materials it creates energy that the balance books as
+      // a negative transfer loss, so the energy check does not stop it
+      // (doc/stability.md, "APIC in plastic and damaging flows").
+      if (any_apic)
+        for (unsigned int i = 0; i < materials.size(); ++i)
+          if (materials[i]->has_plasticity() || materials[i]->has_damage())
+            throw ScarpError(
+              "Transfer: <Velocity transfer> = APIC is refused with Material " +
+              lists.materials[i] +
+              ", whose plasticity or damage makes the body flow: in such "
+              "flows APIC creates energy (points shot off at 20 to 200 m/s "
+              "in the granular column collapse and the Joss Bay debris; "
+              "doc/stability.md, \"APIC in plastic and damaging flows\"). "
+              "Use FLIP, with <FLIP fraction> or <PIC time scale>.");
       nonlocal::NonlocalParameters nonlocal_parameters;
       nonlocal_parameters.parse_parameters(prm);
       nonlocal_update_interval = nonlocal_parameters.update_interval;

@@ -16,7 +16,9 @@ namespace scarp
                         "velocity; dissipative), FLIP (blend of the grid "
                         "velocity increment and PIC, see FLIP fraction) or "
                         "APIC (affine PIC: carries the velocity gradient; "
-                        "conserves angular momentum).");
+                        "conserves angular momentum; elastic materials only: "
+                        "refused with plasticity or damage, where it creates "
+                        "energy, doc/stability.md).");
       // The string of default_flip_fraction.
       prm.declare_entry("FLIP fraction",
                         "0.99",

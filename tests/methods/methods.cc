@@ -428,6 +428,47 @@ namespace
               "refused with a message naming <PIC time scale>");
       }
   }
+
+  // APIC is refused with a material that can flow (Mohr-Coulomb here, chalk
+  // likewise): in such flows it creates energy (doc/stability.md, "APIC in
+  // plastic and damaging flows"). The same scene with an elastic material
+  // is accepted, so the refusal is the material's, not the scene's.
+  void
+  apic_refused_in_flows()
+  {
+    const std::string elastic =
+      spreading_cell(1e-4, "  set Velocity transfer = APIC\n");
+    std::string       plastic = elastic;
+    const std::string model   = "  set Model = linear elastic\n";
+    plastic.replace(plastic.find(model),
+                    model.size(),
+                    "  set Model = Mohr-Coulomb\n  subsection Mohr-Coulomb\n"
+                    "    set Cohesion = 0\n    set Friction angle = 30\n"
+                    "  end\n");
+    std::string message;
+    try
+      {
+        make_scene<2>(plastic);
+      }
+    catch (const scarp::ScarpError &e)
+      {
+        message = e.what();
+      }
+    out() << "  message: " << message << std::endl;
+    check(message.find("APIC") != std::string::npos &&
+            message.find("Material m") != std::string::npos,
+          "APIC with Mohr-Coulomb refused, naming APIC and the material");
+    bool accepted = true;
+    try
+      {
+        make_scene<2>(elastic);
+      }
+    catch (const scarp::ScarpError &)
+      {
+        accepted = false;
+      }
+    check(accepted, "APIC with a linear elastic material is accepted");
+  }
 } // namespace
 
 int
@@ -443,5 +484,6 @@ main(int argc, char **argv)
                     {"mms_band_order", mms_band_order},
                     {"refinement_without_damage", refinement_without_damage},
                     {"pic_time_scale", pic_time_scale},
-                    {"pic_time_scale_refused", pic_time_scale_refused}});
+                    {"pic_time_scale_refused", pic_time_scale_refused},
+                    {"apic_refused_in_flows", apic_refused_in_flows}});
 }
