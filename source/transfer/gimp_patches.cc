@@ -42,7 +42,8 @@ namespace scarp
       // The active cells that touch the cell, in a fixed order (by
       // level and index, not by the order of the vertex lists), so that
       // the sums of a node come out the same on any partition.
-      std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+      auto &cells = scratch_cells;
+      cells.clear();
       for (const unsigned int v : cell->vertex_indices())
         for (const auto &c : vertex_cells[cell->vertex_index(v)])
           cells.push_back(c);
@@ -51,9 +52,18 @@ namespace scarp
       });
       cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 
-      Patch                                p;
-      constexpr unsigned int               n_v = 1u << dim;
-      std::vector<types::global_dof_index> cell_dofs(n_v);
+      Patch &p = scratch;
+      p.cells.clear();
+      p.entries.clear();
+      p.node_dofs.clear();
+      p.node_positions.clear();
+      p.node_local.clear();
+      p.regular                        = false;
+      p.lattice_h                      = 0;
+      p.lattice_inv_h                  = 0;
+      constexpr unsigned int n_v       = 1u << dim;
+      auto                  &cell_dofs = scratch_dofs;
+      cell_dofs.resize(n_v);
       const auto node_of = [&](const types::global_dof_index dof,
                                const Point<dim>             &position) {
         for (unsigned int k = 0; k < p.node_dofs.size(); ++k)
@@ -77,12 +87,16 @@ namespace scarp
                            "cell next to the point's cell (mesh not balanced "
                            "at vertices).");
         };
-      p.entry_begin.push_back(0);
       for (const auto &c : cells)
         {
-          const Point<dim> lower = c->vertex(0);
-          p.cell_lower.push_back(lower);
-          p.cell_size.push_back(c->vertex(1)[0] - lower[0]);
+          typename Patch::Cell patch_cell;
+          patch_cell.lower  = c->vertex(0);
+          const double size = c->vertex(1)[0] - patch_cell.lower[0];
+          for (unsigned int d = 0; d < dim; ++d)
+            patch_cell.upper[d] = patch_cell.lower[d] + size;
+          patch_cell.h              = size;
+          patch_cell.inv_h          = 1. / size;
+          patch_cell.entry_begin[0] = p.entries.size();
           c->get_dof_indices(cell_dofs);
           for (unsigned int i = 0; i < n_v; ++i)
             {
@@ -92,41 +106,37 @@ namespace scarp
                   const auto *entries =
                     constraints->get_constraint_entries(dof);
                   for (const auto &[master, weight] : *entries)
-                    {
-                      p.entry_node.push_back(
-                        node_of(master, position_of(master, c)));
-                      p.entry_weight.push_back(weight);
-                    }
+                    p.entries.emplace_back(node_of(master,
+                                                   position_of(master, c)),
+                                           weight);
                 }
               else
-                {
-                  p.entry_node.push_back(node_of(dof, c->vertex(i)));
-                  p.entry_weight.push_back(1.);
-                }
-              p.entry_begin.push_back(p.entry_node.size());
+                p.entries.emplace_back(node_of(dof, c->vertex(i)), 1.);
+              patch_cell.entry_begin[i + 1] = p.entries.size();
             }
+          p.cells.push_back(patch_cell);
         }
       for (const types::global_dof_index dof : p.node_dofs)
         p.node_local.push_back(partitioner->global_to_local(dof));
-      for (unsigned int c = 0; c < p.cell_size.size(); ++c)
-        {
-          typename Patch::Cell cell;
-          cell.lower = p.cell_lower[c];
-          for (unsigned int d = 0; d < dim; ++d)
-            cell.upper[d] = p.cell_lower[c][d] + p.cell_size[c];
-          cell.h     = p.cell_size[c];
-          cell.inv_h = 1. / p.cell_size[c];
-          for (unsigned int i = 0; i <= n_v; ++i)
-            cell.entry_begin[i] = p.entry_begin[c * n_v + i];
-          p.cells.push_back(cell);
-        }
-      for (unsigned int e = 0; e < p.entry_node.size(); ++e)
-        p.entries.emplace_back(p.entry_node[e], p.entry_weight[e]);
       detect_regular(p,
                      cell->vertex(0),
                      cell->vertex(1)[0] - cell->vertex(0)[0]);
-      index = patches.size();
-      patches.push_back(std::move(p));
+      // Copies of their exact size: a patch lives until the mesh changes.
+      Patch stored;
+      stored.cells.assign(p.cells.begin(), p.cells.end());
+      stored.entries.assign(p.entries.begin(), p.entries.end());
+      stored.node_dofs.assign(p.node_dofs.begin(), p.node_dofs.end());
+      stored.node_positions.assign(p.node_positions.begin(),
+                                   p.node_positions.end());
+      stored.node_local.assign(p.node_local.begin(), p.node_local.end());
+      stored.regular = p.regular;
+      std::copy(&p.lattice[0][0],
+                &p.lattice[0][0] + 4 * dim,
+                &stored.lattice[0][0]);
+      stored.lattice_h     = p.lattice_h;
+      stored.lattice_inv_h = p.lattice_inv_h;
+      index                = patches.size();
+      patches.push_back(std::move(stored));
       return patches.back();
     }
 
@@ -236,8 +246,6 @@ namespace scarp
       permute(p.node_dofs);
       permute(p.node_positions);
       permute(p.node_local);
-      for (auto &node : p.entry_node)
-        node = lattice_index[node];
       for (auto &entry : p.entries)
         entry.first = lattice_index[entry.first];
       p.lattice_h     = h;

@@ -27,6 +27,7 @@ namespace scarp_chalk_test
   using scarp_test::make_scene;
   using scarp_test::num;
   using scarp_test::out;
+  using scarp_test::refusal_message;
   using scarp_test::run_cases_with_args;
 
   /// Parameters of a chalk material (Joss Bay defaults, design note

@@ -202,15 +202,8 @@ namespace
     check(y_min < -1. + 0.125 / 2. && y_min > -1., "points reach y = -1");
 
     // The same layer in a mesh that starts at the beach level is refused.
-    std::string message;
-    try
-      {
-        make_scene<dim>(cliff_scene(0), MPI_COMM_WORLD, "band_outside");
-      }
-    catch (const std::exception &e)
-      {
-        message = e.what();
-      }
+    const std::string message =
+      refusal_message<dim>(cliff_scene(0), MPI_COMM_WORLD, "band_outside");
     out() << "  message: " << message << std::endl;
     check(message.find("Base layer thickness") != std::string::npos &&
             message.find("Mesh/Lower corner") != std::string::npos,

@@ -101,6 +101,33 @@ namespace scarp_test
     return sim;
   }
 
+  /// The message of the exception that @p f throws, "" if it throws none:
+  /// a test of a refusal checks that the message names the cause.
+  inline std::string
+  error_message(const std::function<void()> &f)
+  {
+    try
+      {
+        f();
+      }
+    catch (const std::exception &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+
+  /// The message with which the scene of @p text is refused while it is
+  /// read or set up, "" if it is accepted.
+  template <int dim>
+  std::string
+  refusal_message(const std::string &text,
+                  const MPI_Comm     communicator = MPI_COMM_WORLD,
+                  const std::string &tag          = "refused")
+  {
+    return error_message([&]() { make_scene<dim>(text, communicator, tag); });
+  }
+
   /// The communicator a simulation runs on.
   template <int dim>
   MPI_Comm

@@ -219,15 +219,7 @@ namespace
   std::string
   error_of(const std::string &text)
   {
-    try
-      {
-        make_scene<dim>(text, MPI_COMM_WORLD, "bad");
-      }
-    catch (const std::exception &e)
-      {
-        return e.what();
-      }
-    return "";
+    return refusal_message<dim>(text, MPI_COMM_WORLD, "bad");
   }
 
   void

@@ -211,7 +211,7 @@ namespace
           std::max(linear_grad,
                    (I - Tensor<2, dim>(unit_symmetric_tensor<dim>())).norm());
         n_hanging_patches +=
-          patch.entry_node.size() > patch.cell_size.size() * (1u << dim);
+          patch.entries.size() > patch.cells.size() * (1u << dim);
         ++n;
       });
     unity             = Utilities::MPI::max(unity, MPI_COMM_WORLD);
@@ -259,7 +259,7 @@ namespace
           const double(&l)[dim],
           const auto &) {
         const bool hanging =
-          patch.entry_node.size() > patch.cell_size.size() * (1u << dim);
+          patch.entries.size() > patch.cells.size() * (1u << dim);
         if (!patch.regular)
           {
             ++n_irregular;

@@ -60,23 +60,16 @@ namespace scarp
       /// resolved into patch nodes.
       struct Patch
       {
-        /// Lower corner and edge of each cell of the patch.
-        std::vector<Point<dim>> cell_lower;
-        std::vector<double>     cell_size;
-        /// For vertex v of patch cell c: entries [begin[c 2^dim + v],
-        /// begin[c 2^dim + v + 1]) of (node, weight).
-        std::vector<unsigned int> entry_begin;
-        std::vector<unsigned int> entry_node;
-        std::vector<double>       entry_weight;
         /// The unconstrained dofs of the patch and their positions.
         std::vector<types::global_dof_index> node_dofs;
         std::vector<Point<dim>>              node_positions;
         /// Their indices in the local storage of the grid vectors (owned,
         /// then ghost), for local_element() instead of a global lookup.
         std::vector<unsigned int> node_local;
-        /// What evaluate() reads, merged from the arrays above into two:
-        /// per patch cell its box, edge, 1/h and the range of its
-        /// vertices' entries, and the (node, weight) entries.
+        /// What evaluate() reads: per patch cell its box, edge, 1/h and
+        /// the range [entry_begin[v], entry_begin[v + 1]) of vertex v's
+        /// entries, and the (node, weight) entries (a vertex that hangs has
+        /// one per master, the others one of weight 1).
         struct Cell
         {
           Point<dim>   lower, upper;
@@ -175,6 +168,12 @@ namespace scarp
       /// A deque: a patch stays in place while others are added, so the
       /// transfer may keep pointers to the patches of a step.
       std::deque<Patch> patches;
+      /// Scratch of patch(), kept between calls: a patch is built here and
+      /// copied into arrays of its exact size (one allocation each, no
+      /// slack from growing them one entry at a time).
+      Patch                                                       scratch;
+      std::vector<typename DoFHandler<dim>::active_cell_iterator> scratch_cells;
+      std::vector<types::global_dof_index>                        scratch_dofs;
     };
   } // namespace transfer
 } // namespace scarp
