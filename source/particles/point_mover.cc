@@ -6,6 +6,7 @@
 #include <scarp/particles/point_mover.h>
 #include <scarp/particles/pool_growth.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iterator>
 #include <map>
@@ -123,6 +124,7 @@ namespace scarp
     {
       moves.clear();
       n_leaving_rank       = 0;
+      new_cell_entry       = false;
       auto          &pool  = particles.get_property_pool();
       bool           local = true;
       Point<dim>     start;
@@ -148,6 +150,8 @@ namespace scarp
               Move move;
               move.point = particles.particles_in_cell(c.cell).begin();
               std::advance(move.point, q - c.begin);
+              move.old_cell      = c.cell;
+              move.index_in_cell = q - c.begin;
               local = walk_to_cell<dim>(c.cell, x, move.cell, move.reference);
               if (local)
                 {
@@ -157,6 +161,10 @@ namespace scarp
                                        : move.cell->subdomain_id();
                   n_leaving_rank +=
                     move.destination != numbers::invalid_subdomain_id;
+                  new_cell_entry =
+                    new_cell_entry ||
+                    (move.destination == numbers::invalid_subdomain_id &&
+                     particles.n_particles_in_cell(move.cell) == 0);
                   moves.push_back(move);
                 }
             }
@@ -172,12 +180,9 @@ namespace scarp
     PointMover<dim>::move_points(Particles::ParticleHandler<dim> &particles,
                                  const Triangulation<dim>        &triangulation,
                                  const bool                       exchange,
+                                 const bool                       recount,
                                  const MPI_Comm                   communicator)
     {
-      using Iterator =
-        typename Particles::ParticleHandler<dim>::particle_iterator;
-      std::vector<Iterator> leaving;
-      leaving.reserve(moves.size());
       // What a point that changes ranks takes along: its new cell, its
       // location and reference location there, its id and properties,
       // one record of this size each (packed and read below in this order).
@@ -220,7 +225,6 @@ namespace scarp
                           reinterpret_cast<const char *>(properties.data()) +
                             n);
             }
-          leaving.push_back(move.point);
         }
       // As in the full sort: the points that stay on their rank are in
       // their new cells first, then those received, by ascending source
@@ -263,10 +267,27 @@ namespace scarp
                 }
             }
         }
-      // The same list in the same order as in the particle handler's sort,
-      // so that the points left in a cell are reordered alike (and it
-      // recounts the points, collectively).
-      particles.remove_particles(leaving);
+      // The points leave their old cells one at a time, in the order in
+      // which ParticleHandler::remove_particles() takes them (by cell, then
+      // by position in the cell, from the last), so that the points left in
+      // a cell are reordered alike. remove_particles() then calls
+      // update_cached_numbers(), which walks every point and makes two
+      // reductions, in every step in which a point moved. Here only when
+      // it can change something: a cell new to the handler's list (added
+      // at its end, which it puts back in order) or points that changed
+      // ranks. Otherwise the list stays in order, remove_particle() and
+      // insert_particle() keep the local count, and the global count and
+      // the largest id do not change (only the largest number of points
+      // per cell, n_global_max_particles_per_cell(), which scarp does not
+      // use, is left as it was).
+      std::sort(moves.begin(), moves.end(), [](const Move &a, const Move &b) {
+        return a.old_cell > b.old_cell ||
+               (a.old_cell == b.old_cell && a.index_in_cell > b.index_in_cell);
+      });
+      for (const Move &move : moves)
+        particles.remove_particle(move.point);
+      if (recount)
+        particles.update_cached_numbers();
       n_last_moved = moves.size();
       n_last_sent  = n_leaving_rank;
       moves.clear();
@@ -290,12 +311,20 @@ namespace scarp
           double(n_moved_since_full_sort + moves.size()) >
             compaction_fraction * particles.n_locally_owned_particles())
         verdict = 1;
-      const unsigned int all =
-        Utilities::MPI::min(2 * verdict + (n_leaving_rank == 0 ? 1 : 0),
-                            communicator);
+      // With it, in the same reduction: whether a rank's moves add a cell
+      // to the particle handler's list (0) or not (1).
+      const unsigned int mine[2] = {2 * verdict + (n_leaving_rank == 0 ? 1 : 0),
+                                    new_cell_entry ? 0u : 1u};
+      unsigned int       least[2];
+      Utilities::MPI::min(mine, communicator, least);
+      const unsigned int all = least[0];
       if (all >= 4)
         {
-          move_points(particles, triangulation, all == 4, communicator);
+          move_points(particles,
+                      triangulation,
+                      all == 4,
+                      all == 4 || least[1] == 0,
+                      communicator);
           n_moved_since_full_sort += n_last_moved;
           return true;
         }

@@ -135,7 +135,8 @@ namespace
     // Where each point's cell level goes, over all steps.
     unsigned int n_to_finer = 0, n_to_coarser = 0, n_moved = 0, n_sent = 0;
     unsigned int n_local_steps = 0, n_full_steps = 0;
-    bool         same = true, followed = true, gained_ok = true;
+    bool same = true, followed = true, gained_ok = true, count_ok = true,
+         same_order = true;
     // Without the compaction by the full sort (the test moves most points
     // every step; the runs of scarp a few in a thousand).
     PointMover<dim> mover(1e30);
@@ -206,6 +207,13 @@ namespace
               }
             for (const CellId &id : occupied(moved))
               gained_ok = gained_ok && candidates.count(id) == 1;
+            // It takes the points out one at a time, not through
+            // remove_particles(), which recounts them: the local count it
+            // leaves must be the number of points held.
+            count_ok =
+              count_ok && static_cast<types::particle_index>(
+                            std::distance(moved.begin(), moved.end())) ==
+                            moved.n_locally_owned_particles();
           }
         n_moved += mover.n_moved();
         n_sent += mover.n_sent();
@@ -217,6 +225,17 @@ namespace
         same = same &&
                cell_contents(tria, full) == cell_contents(tria, moved) &&
                cell_contents(tria, full) == cell_contents(tria, compacted);
+        // The handler's own order of the points (its list of cells, which
+        // an iteration over all points follows: output, splitting) is the
+        // full sort's too.
+        const auto ids_in_order = [](const auto &handler) {
+          std::vector<types::particle_index> ids;
+          for (const auto &point : handler)
+            ids.push_back(point.get_id());
+          return ids;
+        };
+        same_order = same_order && ids_in_order(full) == ids_in_order(moved) &&
+                     ids_in_order(full) == ids_in_order(compacted);
         for (const auto &point : full)
           {
             const auto before = level_before.find(point.get_id());
@@ -243,6 +262,15 @@ namespace
           where + "same points, order, reference locations and properties "
                   "in every cell as the full sort, bit for bit, every step "
                   "(with and without the compaction)");
+    count_ok = Utilities::MPI::min(static_cast<int>(count_ok), MPI_COMM_WORLD);
+    check(count_ok,
+          where + "after each move the local count of points is the number "
+                  "of points held");
+    same_order =
+      Utilities::MPI::min(static_cast<int>(same_order), MPI_COMM_WORLD);
+    check(same_order,
+          where + "an iteration over all points meets them in the order of "
+                  "the full sort, every step");
     check(gained_ok,
           where + "after each move every cell with points held points "
                   "before or is among the cells gained, which hold points");

@@ -121,21 +121,26 @@ namespace scarp
                      const std::vector<CellPoints>   &cells,
                      const std::vector<unsigned int> &handles);
 
-      /// Move the points find_new_cells() found.
       /// Move the points of @p moves; with @p exchange (collective) hand
-      /// those bound for other ranks over to them.
+      /// those bound for other ranks over to them; with @p recount
+      /// (collective) let the particle handler put its list of cells in
+      /// order and count its points again, as its remove_particles() does.
       void
       move_points(Particles::ParticleHandler<dim> &particles,
                   const Triangulation<dim>        &triangulation,
                   const bool                       exchange,
+                  const bool                       recount,
                   const MPI_Comm                   communicator);
 
       /// A point leaving its cell.
       struct Move
       {
         typename Particles::ParticleHandler<dim>::particle_iterator point;
-        typename Triangulation<dim>::active_cell_iterator           cell;
-        Point<dim>                                                  reference;
+        /// The cell the point leaves and its position in that cell's list.
+        typename Triangulation<dim>::active_cell_iterator old_cell;
+        unsigned int                                      index_in_cell;
+        typename Triangulation<dim>::active_cell_iterator cell;
+        Point<dim>                                        reference;
         /// The rank the point goes to, or invalid_subdomain_id if it
         /// stays on this one.
         types::subdomain_id destination;
@@ -148,6 +153,10 @@ namespace scarp
       std::size_t         n_last_moved = 0;
       /// Points of @p moves that go to another rank.
       std::size_t n_leaving_rank = 0;
+      /// Whether a point of @p moves goes into a cell of this rank that
+      /// holds none: the handler then adds the cell at the end of its list,
+      /// out of order.
+      bool        new_cell_entry = false;
       std::size_t n_last_sent    = 0;
       /// Points moved here since the last full sort.
       std::size_t n_moved_since_full_sort = 0;
