@@ -121,22 +121,10 @@ namespace scarp
       detect_regular(p,
                      cell->vertex(0),
                      cell->vertex(1)[0] - cell->vertex(0)[0]);
-      // Copies of their exact size: a patch lives until the mesh changes.
-      Patch stored;
-      stored.cells.assign(p.cells.begin(), p.cells.end());
-      stored.entries.assign(p.entries.begin(), p.entries.end());
-      stored.node_dofs.assign(p.node_dofs.begin(), p.node_dofs.end());
-      stored.node_positions.assign(p.node_positions.begin(),
-                                   p.node_positions.end());
-      stored.node_local.assign(p.node_local.begin(), p.node_local.end());
-      stored.regular = p.regular;
-      std::copy(&p.lattice[0][0],
-                &p.lattice[0][0] + 4 * dim,
-                &stored.lattice[0][0]);
-      stored.lattice_h     = p.lattice_h;
-      stored.lattice_inv_h = p.lattice_inv_h;
-      index                = patches.size();
-      patches.push_back(std::move(stored));
+      // A copy: its arrays take their exact size (a patch lives until the
+      // mesh changes), the scratch keeps its room for the next patch.
+      index = patches.size();
+      patches.push_back(p);
       return patches.back();
     }
 

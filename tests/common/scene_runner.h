@@ -101,31 +101,34 @@ namespace scarp_test
     return sim;
   }
 
-  /// The message of the exception that @p f throws, "" if it throws none:
-  /// a test of a refusal checks that the message names the cause.
-  inline std::string
+  /// The message of the @p Exception that @p f throws, "" if it throws
+  /// none (any other exception passes through and fails the test): a test
+  /// of a refusal checks that the message names the cause.
+  template <typename Exception = std::exception>
+  std::string
   error_message(const std::function<void()> &f)
   {
     try
       {
         f();
       }
-    catch (const std::exception &e)
+    catch (const Exception &e)
       {
         return e.what();
       }
     return "";
   }
 
-  /// The message with which the scene of @p text is refused while it is
-  /// read or set up, "" if it is accepted.
-  template <int dim>
+  /// The message of the @p Exception with which the scene of @p text is
+  /// refused while it is read or set up, "" if it is accepted.
+  template <int dim, typename Exception = std::exception>
   std::string
   refusal_message(const std::string &text,
                   const MPI_Comm     communicator = MPI_COMM_WORLD,
                   const std::string &tag          = "refused")
   {
-    return error_message([&]() { make_scene<dim>(text, communicator, tag); });
+    return error_message<Exception>(
+      [&]() { make_scene<dim>(text, communicator, tag); });
   }
 
   /// The communicator a simulation runs on.

@@ -183,8 +183,8 @@ namespace
       }
 
     // An end speed without mass scaling is refused.
-    const std::string message =
-      refusal_message<2>(fall_scene("  set Mass scaling until speed = 1\n"));
+    const std::string message = refusal_message<2, ScarpError>(
+      fall_scene("  set Mass scaling until speed = 1\n"));
     out() << "  refused: " << message << std::endl;
     const bool refused =
       message.find("<Mass scaling> is 1") != std::string::npos;

@@ -104,7 +104,8 @@ namespace
   cfl_too_large()
   {
     auto sim = make_scene<dim>(block_scene(1e4, 0.3, 2.0, "0.1*sin(pi*x); 0"));
-    const std::string message = error_message([&]() { sim->run_until(1.0); });
+    const std::string message =
+      error_message<ScarpError>([&]() { sim->run_until(1.0); });
     out() << "  message: " << message << std::endl;
     check(!message.empty(), "CFL = 2 stops the run with a ScarpError");
     check(message.find("step ") != std::string::npos,

@@ -230,7 +230,7 @@ namespace
   void
   unstable_cfl()
   {
-    const std::string message = error_message([]() {
+    const std::string message = error_message<scarp::ScarpError>([]() {
       auto sim =
         make_scene<2>(bar(0.1, 0.5) + transfer("Q1", "FLIP", "MUSL", 2.0));
       sim->run_until(10);
@@ -285,10 +285,10 @@ namespace
   void
   refinement_without_damage()
   {
-    const std::string message =
-      refusal_message<2>(bar(0.1, 0.5) + transfer("GIMP", "FLIP", "MUSL") +
-                         "subsection Mesh\n  subsection Refinement\n"
-                         "    set Adaptive refinement = true\n  end\nend\n");
+    const std::string message = refusal_message<2, scarp::ScarpError>(
+      bar(0.1, 0.5) + transfer("GIMP", "FLIP", "MUSL") +
+      "subsection Mesh\n  subsection Refinement\n"
+      "    set Adaptive refinement = true\n  end\nend\n");
     out() << "  message: " << message << std::endl;
     check(message.find("Adaptive refinement") != std::string::npos &&
             message.find("damage") != std::string::npos,
@@ -401,7 +401,7 @@ namespace
           "  set FLIP fraction = 0.95\n  set PIC time scale = 0.01\n"})
       {
         const std::string message =
-          refusal_message<2>(spreading_cell(1e-4, blend));
+          refusal_message<2, scarp::ScarpError>(spreading_cell(1e-4, blend));
         out() << "  message: " << message << std::endl;
         check(message.find("PIC time scale") != std::string::npos,
               "refused with a message naming <PIC time scale>");
@@ -424,12 +424,13 @@ namespace
                     "  set Model = Mohr-Coulomb\n  subsection Mohr-Coulomb\n"
                     "    set Cohesion = 0\n    set Friction angle = 30\n"
                     "  end\n");
-    const std::string message = refusal_message<2>(plastic);
+    const std::string message = refusal_message<2, scarp::ScarpError>(plastic);
     out() << "  message: " << message << std::endl;
     check(message.find("APIC") != std::string::npos &&
             message.find("Material m") != std::string::npos,
           "APIC with Mohr-Coulomb refused, naming APIC and the material");
-    const std::string elastic_message = refusal_message<2>(elastic);
+    const std::string elastic_message =
+      refusal_message<2, scarp::ScarpError>(elastic);
     check(elastic_message.empty(),
           "APIC with a linear elastic material is accepted");
   }
