@@ -193,11 +193,14 @@ namespace scarp
         "largest count exceeds the mean by more than <Imbalance "
         "tolerance>: a collapsing cliff carries its points onto cells of "
         "another rank. 0: balance only after seeding and refinement.");
-      prm.declare_entry("Imbalance tolerance",
-                        "0.1",
-                        Patterns::Double(0.),
-                        "Repartition when max/mean - 1 of the points per "
-                        "rank exceeds this.");
+      prm.declare_entry(
+        "Imbalance tolerance",
+        "0.1",
+        Patterns::Double(0.),
+        "Repartition when max/mean - 1 of the points per rank exceeds this, "
+        "at the checks and after the split of a refinement pass (whose own "
+        "repartition weighs a refined cell's children as their parent). "
+        "0: repartition again after every split.");
       prm.leave_subsection();
       Checkpoint<dim>::declare_parameters(prm);
       prm.enter_subsection("Stability");

@@ -77,6 +77,9 @@ namespace scarp
       if (grid::RefinementMarker<dim>::mark(
             tria, seeds, buffer, grid.max_refinement_level) == 0)
         return;
+      // Refinement repartitions the mesh as well, weighing each child of a
+      // refined cell as its parent (balance_load()'s weight): the points
+      // the child holds after the split, if they were spread evenly.
       particles.prepare_for_coarsening_and_refinement();
       tria.execute_coarsening_and_refinement();
       particles.unpack_after_coarsening_and_refinement();
@@ -86,8 +89,9 @@ namespace scarp
       loop.counters.points_split += particles::PointSplitter<dim>::split(
         particles, layout, per_direction, grid.domain(), communicator);
       particles.sort_particles_into_subdomains_and_cells();
-      // Splitting changed the points per cell: repartition by them.
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+      // A second repartition (and particle transfer) only where the split
+      // points are spread so unevenly that the ranks are out of balance.
+      if (points_out_of_balance())
         balance_load();
       else
         grid.setup_dofs();

@@ -71,18 +71,26 @@ namespace scarp
 
 
     template <int dim>
-    void
-    Simulation<dim>::rebalance_if_needed()
+    bool
+    Simulation<dim>::points_out_of_balance() const
     {
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(communicator);
       if (n_ranks == 1)
-        return;
+        return false;
       const double n_local = particles.n_locally_owned_particles();
       const double n_max   = Utilities::MPI::max(n_local, communicator);
       const double n_mean =
         Utilities::MPI::sum(n_local, communicator) / n_ranks;
-      if (!(n_max > (1. + balance_tolerance) * n_mean))
+      return n_max > (1. + balance_tolerance) * n_mean;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::rebalance_if_needed()
+    {
+      if (!points_out_of_balance())
         return;
       TimerOutput::Scope scope(timer, "load balancing");
       balance_load();
@@ -285,6 +293,10 @@ namespace scarp
     Simulation<2>::setup();
     template void
     Simulation<3>::setup();
+    template bool
+    Simulation<2>::points_out_of_balance() const;
+    template bool
+    Simulation<3>::points_out_of_balance() const;
     template void
     Simulation<2>::rebalance_if_needed();
     template void

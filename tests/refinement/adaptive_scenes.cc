@@ -7,7 +7,8 @@
 // - damage_band: the chalk overhang of tests/chalk, coarse 0.25 m cells
 //   with one level of adaptive refinement: cells refine before the damage
 //   reaches them, points split with their mass conserved, and on 2 ranks
-//   the mesh and the physics equal the serial run;
+//   the mesh and the physics equal the serial run, and the refinement's
+//   own repartition equals a second one by the split points;
 // - bad_input: impossible refinement settings are refused by name (also
 //   Set-up passes without adaptive refinement or without a loading stage).
 #include <scarp/base/exceptions.h>
@@ -134,15 +135,40 @@ namespace
     // The same scene serially on every rank (with 2 ranks), advanced on the
     // same schedule: same mesh, same points, same physics.
     const bool parallel = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1;
-    std::unique_ptr<Sim> serial;
+    std::unique_ptr<Sim> serial, once, twice;
     if (parallel)
-      serial = make_scene<dim>(overhang("output_band_serial"),
-                               MPI_COMM_SELF,
-                               "band_serial");
+      {
+        serial = make_scene<dim>(overhang("output_band_serial"),
+                                 MPI_COMM_SELF,
+                                 "band_serial");
+        // Repartitioning only in the refinement (no tolerance reached) and
+        // a second time after every split (tolerance 0), and not between;
+        // a driver fraction of 0.05 refines more cells in more passes (with
+        // deal.II's weight of a refined cell's children replaced by that
+        // of an empty cell, the two then differ in the last digits).
+        const auto balancing = [](const std::string &tolerance) {
+          return "subsection Load balancing\n  set Check interval = 0\n"
+                 "  set Imbalance tolerance = " +
+                 tolerance +
+                 "\nend\nsubsection Mesh\n  subsection Refinement\n"
+                 "    set Driver fraction = 0.05\n  end\nend\n";
+        };
+        once  = make_scene<dim>(overhang("output_band_once") + balancing("1e9"),
+                               MPI_COMM_WORLD,
+                               "band_once");
+        twice = make_scene<dim>(overhang("output_band_twice") + balancing("0"),
+                                MPI_COMM_WORLD,
+                                "band_twice");
+      }
     const auto advance = [&](const double t) {
       sim->run_until(t);
       if (serial)
         serial->run_until(t);
+      if (twice)
+        {
+          once->run_until(t);
+          twice->run_until(t);
+        }
     };
     const auto m0 = sim->measure();
     const auto cells0 =
@@ -213,6 +239,29 @@ namespace
     check(std::abs(a.kinetic_energy - b.kinetic_energy) <=
             1e-8 * b.kinetic_energy,
           "kinetic energy equal to 1e-8");
+    // A refinement pass repartitions once, in the refinement, weighing each
+    // child as its parent. Points seeded on a lattice split into their
+    // parent's count per child, so the second repartition by the split
+    // points finds the same partition: the same points on each rank and
+    // the same sums, bit for bit.
+    const auto   o = once->measure();
+    const auto   c = twice->measure();
+    const double local_points =
+      once->particle_handler().n_locally_owned_particles();
+    const double twice_local_points =
+      twice->particle_handler().n_locally_owned_particles();
+    out() << "  refinement passes repartitioning once / twice: points on "
+          << "this rank " << local_points << " / " << twice_local_points
+          << ", E_kin " << o.kinetic_energy << " / " << c.kinetic_energy
+          << std::endl;
+    check(Utilities::MPI::max(std::abs(local_points - twice_local_points),
+                              MPI_COMM_WORLD) == 0,
+          "one repartition per refinement pass gives the points on each "
+          "rank of two");
+    check(o.kinetic_energy == c.kinetic_energy &&
+            o.damaged_volume == c.damaged_volume,
+          "one repartition per refinement pass: the same physics bit for "
+          "bit");
   }
 
   /// The message of the error that building @p text throws ("" if none).

@@ -234,6 +234,10 @@ namespace scarp
       /// material points (cells weighted by their points).
       void
       balance_load();
+      /// Whether the points per rank have drifted apart by more than
+      /// balance_tolerance (max/mean - 1; collective, false on one rank).
+      bool
+      points_out_of_balance() const;
       /// Repartition when the points per rank have drifted apart by more
       /// than balance_tolerance (collective; every balance_interval steps).
       void
