@@ -164,7 +164,7 @@ namespace
       sim->run_until(t);
       if (serial)
         serial->run_until(t);
-      if (twice)
+      if (parallel)
         {
           once->run_until(t);
           twice->run_until(t);
@@ -246,15 +246,15 @@ namespace
     // the same sums, bit for bit.
     const auto   o = once->measure();
     const auto   c = twice->measure();
-    const double local_points =
+    const double once_local_points =
       once->particle_handler().n_locally_owned_particles();
     const double twice_local_points =
       twice->particle_handler().n_locally_owned_particles();
     out() << "  refinement passes repartitioning once / twice: points on "
-          << "this rank " << local_points << " / " << twice_local_points
+          << "this rank " << once_local_points << " / " << twice_local_points
           << ", E_kin " << o.kinetic_energy << " / " << c.kinetic_energy
           << std::endl;
-    check(Utilities::MPI::max(std::abs(local_points - twice_local_points),
+    check(Utilities::MPI::max(std::abs(once_local_points - twice_local_points),
                               MPI_COMM_WORLD) == 0,
           "one repartition per refinement pass gives the points on each "
           "rank of two");
