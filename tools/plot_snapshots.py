@@ -1,0 +1,154 @@
+#!/usr/bin/python3
+"""Draw the material points of several runs side by side, at the same time
+after each run's failure onset: one row per run, damage on the left, speed
+on the right.
+
+Runs of different resolutions fail at different times; comparing them at
+equal time after their onsets shows which of them is ahead. Each run
+directory needs its particles.pvd (the particle VTU outputs) and its
+summary.json (the collapse stage's start and the failure onset, written
+also while a run is in progress or was stopped). For each run the particle
+output nearest to the asked time is drawn; "end" takes the run's last
+output. Prints, per run, the output used, its time after the onset, its
+kinetic energy and the points faster than --fast.
+
+Uses the Debian package python3-matplotlib, hence /usr/bin/python3.
+
+Example:
+  plot_snapshots.py --output snapshots.png --xlim 10 45 --ylim -2 17 \\
+      "L2=output/joss_bay_refined/L2_rg5e-3_seeded_ui10_pts_cfl1.0@10.7" \\
+      "L2 at rest=output/joss_bay_refined/L2_rg5e-3_seeded_ui10_pts_cfl1.0@end" \\
+      "L3=output/joss_bay_refined/L3_rg5e-3_seeded_ui10_pts_cfl1.0@10.7"
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from read_particles import read_particles  # noqa: E402
+
+
+def onset_time(directory):
+    """Absolute time of the failure onset: the collapse stage's start plus
+    the onset the cliff diagnostics measured from it."""
+    name = os.path.join(directory, "summary.json")
+    try:
+        with open(name) as f:
+            summary = json.load(f)
+    except OSError as e:
+        sys.exit(f"{name}: {e.strerror}")
+    onset = summary.get("cliff", {}).get("failure_onset_s")
+    start = summary.get("stages", {}).get("collapse", {}).get("start_time")
+    if onset is None or start is None:
+        sys.exit(f"{name}: no failure onset (has the cliff failed?)")
+    return start + onset
+
+
+def outputs(directory):
+    """(time, pvtu path) of every particle output, from particles.pvd."""
+    name = os.path.join(directory, "particles.pvd")
+    try:
+        text = open(name).read()
+    except OSError as e:
+        sys.exit(f"{name}: {e.strerror}")
+    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)
+    if not found:
+        sys.exit(f"{name}: no particle outputs")
+    return [(float(t), os.path.join(directory, f)) for t, f in found]
+
+
+def parse_run(text):
+    if "=" not in text or "@" not in text:
+        sys.exit(f"'{text}': expected LABEL=DIR@T (T seconds after the "
+                 "onset, or 'end')")
+    label, rest = text.split("=", 1)
+    directory, when = rest.rsplit("@", 1)
+    if when != "end":
+        try:
+            when = float(when)
+        except ValueError:
+            sys.exit(f"'{text}': T must be a number of seconds or 'end'")
+    return label, directory, when
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    parser.add_argument("runs", nargs="+", metavar="LABEL=DIR@T")
+    parser.add_argument("--output", required=True, help="PNG to write")
+    parser.add_argument("--xlim", type=float, nargs=2, default=None)
+    parser.add_argument("--ylim", type=float, nargs=2, default=None)
+    parser.add_argument("--speed-max", type=float, default=2.0,
+                        help="top of the speed colour scale, m/s")
+    parser.add_argument("--fast", type=float, default=0.5,
+                        help="speed counted as moving, m/s")
+    parser.add_argument("--marker-size", type=float, default=1.5,
+                        help="marker area in units of a point's own area")
+    parser.add_argument("--dpi", type=int, default=100)
+    args = parser.parse_args()
+
+    runs = [parse_run(r) for r in args.runs]
+    fig, axes = plt.subplots(len(runs), 2, figsize=(14, 4.2 * len(runs)),
+                             squeeze=False)
+    print("| run | output | t | after the onset | kinetic energy | "
+          f"points faster than {args.fast} m/s (of all) |")
+    print("|---|---|---|---|---|---|")
+    for row, (label, directory, when) in enumerate(runs):
+        onset = onset_time(directory)
+        records = outputs(directory)
+        if when == "end":
+            t, pvtu = records[-1]
+        else:
+            t, pvtu = min(records, key=lambda r: abs(r[0] - onset - when))
+        p = read_particles(pvtu)
+        speed = [math.hypot(a, b)
+                 for a, b in zip(p["velocity_0"], p["velocity_1"])]
+        kinetic = sum(0.5 * m * s * s for m, s in zip(p["mass"], speed))
+        n_fast = sum(1 for s in speed if s > args.fast)
+        print(f"| {label} | {os.path.basename(pvtu)} | {t:.2f} s | "
+              f"{t - onset:.2f} s | {kinetic:.3g} J | "
+              f"{n_fast} ({len(speed)}) |")
+        title = f"{label}: t = {t:.2f} s, {t - onset:.2f} s after the onset"
+        panels = [(p["damage"], 1.0, "viridis", "damage"),
+                  (speed, args.speed_max, "magma", "speed, m/s")]
+        for col, (values, top, cmap, name) in enumerate(panels):
+            ax = axes[row][col]
+            ax.set_aspect("equal")
+            if args.xlim:
+                ax.set_xlim(*args.xlim)
+            if args.ylim:
+                ax.set_ylim(*args.ylim)
+            # Each point a square of its reference area (times
+            # --marker-size, 1.5 so that squares overlap instead of leaving
+            # raster seams), so that coarse and fine runs look alike;
+            # dilated debris shows its gaps.
+            box = ax.get_window_extent()
+            x0, x1 = args.xlim if args.xlim else (min(p["x"]), max(p["x"]))
+            y0, y1 = args.ylim if args.ylim else (min(p["y"]), max(p["y"]))
+            points_per_m = 72. / fig.dpi * min(box.width / (x1 - x0),
+                                               box.height / (y1 - y0))
+            sizes = [args.marker_size * (points_per_m * math.sqrt(v)) ** 2
+                     for v in p["reference_volume"]]
+            drawn = ax.scatter(p["x"], p["y"], c=values, s=sizes, marker="s",
+                               vmin=0,
+                               vmax=top, cmap=cmap, linewidths=0)
+            fig.colorbar(drawn, ax=ax, label=name, shrink=0.8)
+            ax.set_title(f"{title} ({name})", fontsize=9)
+            ax.set_xlabel("x (m)")
+            ax.set_ylabel("y (m)")
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=args.dpi)
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
