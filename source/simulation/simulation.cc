@@ -129,6 +129,7 @@ namespace scarp
         {
           vtu->restore_records(restored_records);
           first_step = loop.step;
+          first_time = loop.time;
           pcout << "Resumed from " << checkpoint.loaded_directory()
                 << " at step " << loop.step << ", t = " << loop.time << " s"
                 << std::endl;

@@ -11,6 +11,7 @@
 #include <scarp/materials/chalk.h>
 #include <scarp/materials/material_factory.h>
 #include <scarp/particles/body_seeder.h>
+#include <scarp/postprocess/run_progress.h>
 #include <scarp/scenes/shape_factory.h>
 #include <scarp/simulation/simulation.h>
 
@@ -161,8 +162,9 @@ namespace scarp
       if (!force && wall - last_progress_wall < 2.)
         return;
       last_progress_wall = wall;
-      const double done  = loop.time / stages.back().end_time;
-      const double eta   = done > 0 ? wall * (1 - done) / done : 0;
+      // Of this run only: a resumed run counts from its checkpoint.
+      const double eta = postprocess::remaining_wall_time(
+        wall, first_time, loop.time, stages.back().end_time);
       pcout << "  " << std::setw(8) << stage.name << "  step " << std::setw(7)
             << loop.step << "  t = " << std::setw(10) << std::setprecision(5)
             << loop.time << " s  dt = " << std::setw(9) << std::setprecision(3)

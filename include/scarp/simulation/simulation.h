@@ -359,6 +359,9 @@ namespace scarp
       /// The step this run started from (a resumed run: the checkpoint's),
       /// for the speed of this run.
       unsigned int first_step = 0;
+      /// The simulated time this run started from, for its estimate of the
+      /// wall time left.
+      double first_time = 0;
 
       grid::BackgroundGrid<dim>                         grid;
       Particles::ParticleHandler<dim>                   particles;
