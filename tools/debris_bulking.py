@@ -27,23 +27,14 @@ import argparse
 import json
 import math
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from read_particles import read_particles  # noqa: E402
+from read_particles import particle_outputs, read_particles  # noqa: E402
 
 
 def pick_output(directory, time):
-    name = os.path.join(directory, "particles.pvd")
-    try:
-        text = open(name).read()
-    except OSError as e:
-        sys.exit(f"{name}: {e.strerror}")
-    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)
-    if not found:
-        sys.exit(f"{name}: no particle outputs")
-    records = [(float(t), os.path.join(directory, f)) for t, f in found]
+    records = particle_outputs(directory)
     if time is None:
         return records[-1]
     return min(records, key=lambda r: abs(r[0] - time))

@@ -25,7 +25,6 @@ import argparse
 import json
 import math
 import os
-import re
 import sys
 
 import matplotlib
@@ -34,7 +33,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from read_particles import read_particles  # noqa: E402
+from read_particles import particle_outputs, read_particles  # noqa: E402
 
 
 def onset_time(directory):
@@ -51,19 +50,6 @@ def onset_time(directory):
     if onset is None or start is None:
         sys.exit(f"{name}: no failure onset (has the cliff failed?)")
     return start + onset
-
-
-def outputs(directory):
-    """(time, pvtu path) of every particle output, from particles.pvd."""
-    name = os.path.join(directory, "particles.pvd")
-    try:
-        text = open(name).read()
-    except OSError as e:
-        sys.exit(f"{name}: {e.strerror}")
-    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)
-    if not found:
-        sys.exit(f"{name}: no particle outputs")
-    return [(float(t), os.path.join(directory, f)) for t, f in found]
 
 
 def parse_run(text):
@@ -104,7 +90,7 @@ def main():
     print("|---|---|---|---|---|---|")
     for row, (label, directory, when) in enumerate(runs):
         onset = onset_time(directory)
-        records = outputs(directory)
+        records = particle_outputs(directory)
         if when == "end":
             t, pvtu = records[-1]
         else:

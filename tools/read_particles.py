@@ -87,5 +87,19 @@ def last_output(directory, prefix="particles"):
     return files[-1]
 
 
+def particle_outputs(directory, prefix="particles"):
+    """(time, .pvtu path) of every particle output of a run, in the order
+    of its <prefix>.pvd."""
+    name = os.path.join(directory, prefix + ".pvd")
+    try:
+        text = open(name).read()
+    except OSError as e:
+        raise SystemExit(f"{name}: {e.strerror}")
+    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)
+    if not found:
+        raise SystemExit(f"{name}: no particle outputs")
+    return [(float(t), os.path.join(directory, f)) for t, f in found]
+
+
 def first_output(directory, prefix="particles"):
     return sorted(glob.glob(os.path.join(directory, prefix + "_*.pvtu")))[0]
