@@ -27,19 +27,11 @@ Example:
 import argparse
 import bisect
 import csv
-import json
 import os
+import sys
 
-
-def onset_time(directory):
-    """Absolute time of the failure onset from summary.json."""
-    summary = json.load(open(os.path.join(directory, "summary.json")))
-    after = summary["cliff"]["failure_onset_s"]
-    stages = summary["stages"]
-    names = list(stages)
-    start = stages[names[names.index("collapse") - 1]]["end_time"] \
-        if "collapse" in names and names.index("collapse") > 0 else 0.0
-    return start + after
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_summary import onset_time  # noqa: E402
 
 
 def slope(xs, ys):

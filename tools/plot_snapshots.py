@@ -22,7 +22,6 @@ Example:
 """
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -34,22 +33,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from read_particles import particle_outputs, read_particles  # noqa: E402
-
-
-def onset_time(directory):
-    """Absolute time of the failure onset: the collapse stage's start plus
-    the onset the cliff diagnostics measured from it."""
-    name = os.path.join(directory, "summary.json")
-    try:
-        with open(name) as f:
-            summary = json.load(f)
-    except OSError as e:
-        sys.exit(f"{name}: {e.strerror}")
-    onset = summary.get("cliff", {}).get("failure_onset_s")
-    start = summary.get("stages", {}).get("collapse", {}).get("start_time")
-    if onset is None or start is None:
-        sys.exit(f"{name}: no failure onset (has the cliff failed?)")
-    return start + onset
+from run_summary import onset_time  # noqa: E402
 
 
 def parse_run(text):
@@ -120,8 +104,11 @@ def main():
             box = ax.get_window_extent()
             x0, x1 = args.xlim if args.xlim else (min(p["x"]), max(p["x"]))
             y0, y1 = args.ylim if args.ylim else (min(p["y"]), max(p["y"]))
-            points_per_m = 72. / fig.dpi * min(box.width / (x1 - x0),
-                                               box.height / (y1 - y0))
+            # A row or column of points spans nothing in one direction:
+            # the other one sets the scale.
+            spans = [(box.width, x1 - x0), (box.height, y1 - y0)]
+            scales = [w / s for w, s in spans if s > 0] or [box.width]
+            points_per_m = 72. / fig.dpi * min(scales)
             sizes = [args.marker_size * (points_per_m * math.sqrt(v)) ** 2
                      for v in p["reference_volume"]]
             drawn = ax.scatter(p["x"], p["y"], c=values, s=sizes, marker="s",
