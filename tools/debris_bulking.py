@@ -5,8 +5,11 @@ Reads the last particle output of each run directory (or the one nearest
 --time) and prints, for all points of the run: their area before they
 moved (the sum of the reference volumes V0, per unit thickness in 2D),
 their area now (the sum of V0 det F), the ratio of the two (the bulking),
-the largest det F, the extent of the deposit (largest x and y of a point)
-and how the run ended (summary.json).
+the largest det F, the extent of the deposit (largest x and y of a point),
+where its mass lies (the centroid of V0 along x, and the x left of which
+95 and 99 % of V0 lie: tools/deposit_measures.py; unlike the largest x
+they do not grow with a thin front that a finer run resolves) and how the
+run ended (summary.json).
 
 --moved D takes only the points displaced more than D metres (a cliff's
 failed mass, as its diagnostics count it with D = 0.5). The table also
@@ -31,6 +34,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from read_particles import particle_outputs, read_particles  # noqa: E402
+from deposit_measures import mass_centroid_x, mass_quantile_x  # noqa: E402
 
 
 def pick_output(directory, time):
@@ -68,7 +72,11 @@ def measure(pvtu, moved):
     return {"points": len(p["x"]), "before": before, "now": now,
             "inflated_share": gained_inflated / gained if gained > 0 else 0,
             "largest_j": largest_j, "x_max": max(p["x"]),
-            "y_max": max(p["y"]), "x": p["x"], "y": p["y"], "j": js,
+            "y_max": max(p["y"]),
+            "x_centroid": mass_centroid_x(p["x"], p["reference_volume"]),
+            "x_95": mass_quantile_x(p["x"], p["reference_volume"], 0.95),
+            "x_99": mass_quantile_x(p["x"], p["reference_volume"], 0.99),
+            "x": p["x"], "y": p["y"], "j": js,
             "v0": p["reference_volume"]}
 
 
@@ -88,8 +96,9 @@ def main():
     drawn = []
     print("| run | output at t | ended | points | area before, now [m^2] | "
           "bulking | largest det F | area gained in det F > 1.5 | "
-          "deposit to x, top y [m] |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "deposit to x, top y [m] | mass centroid x, 95 and 99 % of the "
+          "mass left of x [m] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for directory in args.runs:
         t, pvtu = pick_output(directory, args.time)
         m = measure(pvtu, args.moved)
@@ -106,7 +115,8 @@ def main():
               f"{m['before']:.3f}, {m['now']:.3f} | "
               f"{m['now'] / m['before']:.3f} | {m['largest_j']:.2f} | "
               f"{100 * m['inflated_share']:.0f} % | "
-              f"{m['x_max']:.2f}, {m['y_max']:.2f} |")
+              f"{m['x_max']:.2f}, {m['y_max']:.2f} | "
+              f"{m['x_centroid']:.3f}, {m['x_95']:.2f}, {m['x_99']:.2f} |")
         drawn.append((directory, t, m))
     if args.output:
         draw(drawn, args)

@@ -11,6 +11,11 @@
 #   6.27, bulking 1.140, largest det F 2.00, the area gained in det F > 1.5
 #   0.5 of 0.77 (65 %); with --moved 0.5 only the 3 moved points: 1.5,
 #   2.27, 1.513, 65 %; --time 0.1 takes the first output (F = I): 1.000.
+#   Where the mass lies (tools/deposit_measures.py): the V0-weighted
+#   centroid along x of the last output is 9.75 / 5.5 = 1.773 m (2.500 m
+#   for the moved points); the quantiles are checked on five unit volumes
+#   at x = 0..4: the 60 % point is x = 2 (exactly 3 of 5 held there), the
+#   61 % point x = 3, the 95 % point x = 4.
 # plot_snapshots.py: onset at t = 2 s (collapse from 0.5 s, onset 1.5 s
 #   after it; for run b from the end of the stage before, as summaries
 #   without stage start times give it); outputs at t = 1, 2.9, 3.2, 4 s;
@@ -74,10 +79,18 @@ expect() { # output, fixed string, what
 out=$(/usr/bin/python3 "$src/tools/debris_bulking.py" --output bulking.png col)
 echo "$out"
 expect "$out" "| col | 1.00 s | kinetic energy settled | 7 | 5.500, 6.270 | 1.140 | 2.00 | 65 % | 3.00, 2.00 |" "all points"
+expect "$out" "| 3.00, 2.00 | 1.773, 3.00, 3.00 |" "all points: mass centroid"
 head -c 8 bulking.png | grep -q PNG || fail "no PNG written"
+q=$(/usr/bin/python3 -c "
+import sys; sys.path.insert(0, '$src/tools')
+from deposit_measures import mass_centroid_x, mass_quantile_x
+xs, v = [4, 0, 3, 1, 2], [1.0] * 5
+print(mass_centroid_x(xs, v), *(mass_quantile_x(xs, v, f) for f in (0.6, 0.61, 0.95)))")
+[ "$q" = "2.0 2 3 4" ] || fail "mass centroid and quantiles of five unit volumes: got '$q'"
 out=$(/usr/bin/python3 "$src/tools/debris_bulking.py" --moved 0.5 col)
 echo "$out"
 expect "$out" "| col | 1.00 s | kinetic energy settled | 3 | 1.500, 2.270 | 1.513 | 2.00 | 65 % |" "--moved 0.5"
+expect "$out" "| 3.00, 2.00 | 2.500, 3.00, 3.00 |" "--moved 0.5: mass centroid"
 out=$(/usr/bin/python3 "$src/tools/debris_bulking.py" --time 0.1 col)
 echo "$out"
 expect "$out" "| col | 0.00 s | kinetic energy settled | 7 | 5.500, 5.500 | 1.000 | 1.00 | 0 % |" "--time 0.1"

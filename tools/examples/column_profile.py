@@ -8,7 +8,9 @@ the right end of the deposit: the right edge of the last bin (width B, one
 cell by default: 2 points) of a contiguous run of occupied bins from the
 wall, so that single points thrown ahead of the front do not count. H_f is
 the highest point. Prints L0, H0, a = H0/L0, L_f, (L_f - L0)/L0, H_f and
-H_f/L0 as `name = value` lines; with --plot, draws the initial outline and
+H_f/L0 as `name = value` lines, and where the mass lies: the
+centroid of the points' reference volumes along x and the x below which 95
+and 99 % of them lie (tools/deposit_measures.py); with --plot, draws the initial outline and
 the final points coloured by their displacement (the static wedge and the
 failure line show as the region that did not move).
 """
@@ -19,6 +21,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from read_particles import first_output, last_output, read_particles  # noqa: E402
+from deposit_measures import mass_centroid_x, mass_quantile_x  # noqa: E402
 
 
 def runout(xs, bin_width):
@@ -103,6 +106,12 @@ def main():
     print("H_f = %.6g" % hf)
     print("H_f_over_L0 = %.6g" % (hf / l0))
     print("points = %d" % len(p1["x"]))
+    # The spread of the mass (tools/deposit_measures.py): not moved by thin
+    # tongues or single points ahead of the front, unlike L_f.
+    v0 = p1["reference_volume"]
+    print("x_mass_centroid = %.6g" % mass_centroid_x(p1["x"], v0))
+    print("x_mass_95 = %.6g" % mass_quantile_x(p1["x"], v0, 0.95))
+    print("x_mass_99 = %.6g" % mass_quantile_x(p1["x"], v0, 0.99))
     print("surface_angle_deg = %.4g" % surface_angle(p1["x"], p1["y"], bin_width, hf))
     print("failure_line_angle_deg = %.4g" % failure_line_angle(p1, 0.01 * h0, l0, h0))
     if args.plot:
