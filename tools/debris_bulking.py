@@ -57,17 +57,16 @@ def measure(pvtu, moved):
         sys.exit(f"{pvtu}: no deformation gradient (F_00 ...) in the output")
     if "F_22" in p:
         sys.exit(f"{pvtu}: 3D output; this tool reads 2D runs")
+    js = [p["F_00"][i] * p["F_11"][i] - p["F_01"][i] * p["F_10"][i]
+          for i in range(len(p["x"]))]
     before = now = gained_inflated = 0.
     largest_j = 0.
-    for i, v0 in enumerate(p["reference_volume"]):
-        j = p["F_00"][i] * p["F_11"][i] - p["F_01"][i] * p["F_10"][i]
+    for j, v0 in zip(js, p["reference_volume"]):
         before += v0
         now += v0 * j
         largest_j = max(largest_j, j)
         if j > 1.5:
             gained_inflated += v0 * (j - 1)
-    js = [p["F_00"][i] * p["F_11"][i] - p["F_01"][i] * p["F_10"][i]
-          for i in range(len(p["x"]))]
     gained = now - before
     return {"points": len(p["x"]), "before": before, "now": now,
             "inflated_share": gained_inflated / gained if gained > 0 else 0,

@@ -14,7 +14,7 @@ def read_summary(directory):
             return json.load(f)
     except OSError as e:
         sys.exit(f"{name}: {e.strerror} (a run still under way has no "
-                 "summary yet: give its onset time after '@')")
+                 "summary yet)")
     except json.JSONDecodeError as e:
         sys.exit(f"{name}: not JSON ({e})")
 
