@@ -30,7 +30,6 @@ Example:
 """
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -39,6 +38,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_summary import read_summary  # noqa: E402
 
 QUANTITIES = [
     ("debris_angle_deg", "debris angle [deg]"),
@@ -162,7 +164,7 @@ def main():
     runs = []
     for item in args.runs:
         label, directory = item.rsplit("=", 1)  # labels may hold "="
-        summary = json.load(open(f"{directory}/summary.json"))
+        summary = read_summary(directory)
         runs.append((label, directory, summary.get("cliff", {})))
 
     header = "| quantity | " + " | ".join(label for label, _, _ in runs) + " |"

@@ -20,14 +20,13 @@ with det F > 1.5.
 by its det F (the area it gained), on the axes --xlim, --ylim.
 
 Used for the fully damaged chalk column (prm/joss_bay/debris_column/,
-doc/joss_bay.md, "The bulking of fully damaged chalk").
+doc/joss_bay/weak_damping.md, "The debris of fully damaged chalk").
 
 Example:
   debris_bulking.py output/debris_column/h0.24 output/debris_column/h0.12
 """
 
 import argparse
-import json
 import math
 import os
 import sys
@@ -35,6 +34,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from read_particles import particle_outputs, read_particles  # noqa: E402
 from deposit_measures import mass_centroid_x, mass_quantile_x  # noqa: E402
+from run_summary import read_summary  # noqa: E402
 
 
 def pick_output(directory, time):
@@ -102,14 +102,12 @@ def main():
         t, pvtu = pick_output(directory, args.time)
         m = measure(pvtu, args.moved)
         ended = "?"
-        try:
-            with open(os.path.join(directory, "summary.json")) as f:
-                summary = json.load(f)
-            stages = summary.get("stages", {})
-            if stages:
-                ended = list(stages.values())[-1].get("end_reason", "?")
-        except (OSError, ValueError):
-            pass
+        # A run still under way has no summary: its outputs are measured all
+        # the same.
+        summary = read_summary(directory, required=False)
+        stages = (summary or {}).get("stages", {})
+        if stages:
+            ended = list(stages.values())[-1].get("end_reason", "?")
         print(f"| {directory} | {t:.2f} s | {ended} | {m['points']} | "
               f"{m['before']:.3f}, {m['now']:.3f} | "
               f"{m['now'] / m['before']:.3f} | {m['largest_j']:.2f} | "

@@ -5,17 +5,22 @@ import os
 import sys
 
 
-def read_summary(directory):
-    """summary.json of a run directory; exits with a message naming the
-    file if it is missing or not JSON (a run still under way has none)."""
+def read_summary(directory, required=True):
+    """summary.json of a run directory. If it is missing or not JSON (a run
+    still under way has none), exits with a message naming the file, or
+    returns None when the caller does not require it."""
     name = os.path.join(directory, "summary.json")
     try:
         with open(name) as f:
             return json.load(f)
     except OSError as e:
+        if not required:
+            return None
         sys.exit(f"{name}: {e.strerror} (a run still under way has no "
                  "summary yet)")
     except json.JSONDecodeError as e:
+        if not required:
+            return None
         sys.exit(f"{name}: not JSON ({e})")
 
 

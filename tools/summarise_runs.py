@@ -13,8 +13,11 @@ retreat, peak kinetic energy, transfer and plastic dissipation. A run that
 stopped after its failure has no debris columns ("-").
 """
 import csv
-import json
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_summary import read_summary  # noqa: E402
 
 
 def cell(value, fmt):
@@ -30,8 +33,7 @@ def main(arguments):
     print("|---" * 12 + "|")
     for argument in arguments:
         label, directory = argument.rsplit("=", 1)
-        with open(f"{directory}/summary.json") as f:
-            summary = json.load(f)
+        summary = read_summary(directory)
         cliff = summary.get("cliff", {})
         with open(f"{directory}/statistics.csv") as f:
             rows = list(csv.DictReader(f))
