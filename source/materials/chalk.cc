@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace scarp
 {
@@ -103,6 +104,24 @@ namespace scarp
                         "of the non-local average, as the authors' code "
                         "does. false: they stay in the denominator with "
                         "Y = 0, which dilutes the average next to a crack.");
+      prm.declare_entry("Remove points stretched beyond",
+                        "0",
+                        Patterns::Double(0.),
+                        "Remove a point whose damage has reached <Removal "
+                        "damage> once its extent along x or y (z) has "
+                        "stretched beyond this factor, as the authors' code "
+                        "does with 4. The extent follows the normal part of "
+                        "each deformation increment (shear leaves it); the "
+                        "three stretches are state variables of the point "
+                        "(axis_stretch_x, _y, _z). Its mass leaves the scene "
+                        "and its energy is booked as removed. 0: never; "
+                        "otherwise > 1.");
+      prm.declare_entry("Removal damage",
+                        "0.9",
+                        Patterns::Double(0., 1.),
+                        "Damage from which a stretched point is removed "
+                        "(<Remove points stretched beyond>); the authors' "
+                        "code: 0.9.");
     }
 
 
@@ -125,6 +144,8 @@ namespace scarp
                                 ? DrivingStress::trial
                                 : DrivingStress::corrected;
       exclude_fully_damaged = prm.get_bool("Nonlocal exclude fully damaged");
+      removal_stretch       = prm.get_double("Remove points stretched beyond");
+      removal_damage        = prm.get_double("Removal damage");
       check();
     }
 
@@ -156,6 +177,13 @@ namespace scarp
         AssertThrow(r >= 0. && r <= 1.,
                     ExcMessage(std::string("Material: '") + name +
                                "' must lie in [0, 1]."));
+      // A factor in (0, 1] would remove points that have not stretched.
+      std::ostringstream factor;
+      factor << removal_stretch;
+      AssertThrow(removal_stretch == 0. || removal_stretch > 1.,
+                  ExcMessage("Material: 'Remove points stretched beyond' "
+                             "must be 0 (never) or > 1, got " +
+                             factor.str() + "."));
     }
 
 
@@ -181,19 +209,23 @@ namespace scarp
     std::vector<std::string>
     Chalk::state_variable_names() const
     {
-      return {"elastic_strain_xx",
-              "elastic_strain_yy",
-              "elastic_strain_zz",
-              "elastic_strain_xy",
-              "elastic_strain_yz",
-              "elastic_strain_xz",
-              "plastic_strain",
-              "plastic_dissipation",
-              "damage",
-              "kappa",
-              "damage_dissipation",
-              "damage_driver",
-              "nonlocal_driver"};
+      std::vector<std::string> names = {"elastic_strain_xx",
+                                        "elastic_strain_yy",
+                                        "elastic_strain_zz",
+                                        "elastic_strain_xy",
+                                        "elastic_strain_yz",
+                                        "elastic_strain_xz",
+                                        "plastic_strain",
+                                        "plastic_dissipation",
+                                        "damage",
+                                        "kappa",
+                                        "damage_dissipation",
+                                        "damage_driver",
+                                        "nonlocal_driver"};
+      if (parameters.removal_stretch > 0)
+        for (const char *axis : {"x", "y", "z"})
+          names.push_back(std::string("axis_stretch_") + axis);
+      return names;
     }
 
 
@@ -204,6 +236,9 @@ namespace scarp
       store_symmetric(elasticity.strain(initial_stress), state);
       for (unsigned int i = plastic_strain; i < n_state; ++i)
         state[i] = 0.;
+      if (parameters.removal_stretch > 0)
+        for (unsigned int i = 0; i < 3; ++i)
+          state[axis_stretch + i] = 1.;
     }
 
 
@@ -374,6 +409,12 @@ namespace scarp
           state[plastic_dissipation] +=
             tau_d[0] * dep[0] + tau_d[1] * dep[1] + tau_d[2] * dep[2];
           batch.stress[q] = compose(tau_d, e.vectors) / J;
+          // The extent along each axis follows the normal part of the
+          // increment, as the authors' domain lengths follow the grid
+          // velocity at the domain's face midpoints.
+          if (parameters.removal_stretch > 0)
+            for (unsigned int i = 0; i < 3; ++i)
+              state[axis_stretch + i] *= batch.delta_F[q][i][i];
           if (batch.stored_energy != nullptr)
             batch.stored_energy[q] =
               0.5 * (tau_d[0] * e.values[0] + tau_d[1] * e.values[1] +

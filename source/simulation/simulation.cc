@@ -111,7 +111,7 @@ namespace scarp
         columns.push_back("body_force_work");
       if (any_mass_scaling())
         columns.push_back("mass_scaling_dissipation");
-      if (remove_outside)
+      if (removes_points)
         columns.push_back("removed_energy");
       if (reference_displacement)
         columns.push_back("reference_error");

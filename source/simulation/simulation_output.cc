@@ -130,7 +130,7 @@ namespace scarp
         row.push_back(loop.energy.body_force_work);
       if (any_mass_scaling())
         row.push_back(loop.energy.mass_scaling_dissipation);
-      if (remove_outside)
+      if (removes_points)
         row.push_back(loop.energy.removed_energy);
       if (reference_displacement)
         {
@@ -224,7 +224,7 @@ namespace scarp
                      loop.energy.mass_scaling_dissipation);
       energies.add("boundary_dissipation", loop.energy.boundary_dissipation);
       energies.add("transfer_dissipation", loop.energy.transfer_dissipation);
-      if (remove_outside)
+      if (removes_points)
         energies.add("removed_energy", loop.energy.removed_energy);
       if (body_force)
         energies.add("body_force_work", loop.energy.body_force_work);

@@ -14,6 +14,7 @@
 #include <scarp/scenes/shape_factory.h>
 #include <scarp/simulation/simulation.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -238,6 +239,22 @@ namespace scarp
             {
               materials.push_back(materials::MaterialFactory::create(prm));
             }
+          catch (const ExceptionBase &e)
+            {
+              // The model's own sentence, on one line, without deal.II's
+              // source location and exception name.
+              std::ostringstream info;
+              e.print_info(info);
+              std::string message = info.str();
+              std::replace(message.begin(), message.end(), '\n', ' ');
+              std::istringstream words(message);
+              std::string        word, text;
+              while (words >> word)
+                text += (text.empty() ? "" : " ") + word;
+              if (text.rfind("Material: ", 0) == 0)
+                text.erase(0, 10);
+              throw ScarpError("Material " + name + ": " + text);
+            }
           catch (const std::exception &e)
             {
               throw ScarpError("Material " + name + ": " + e.what());
@@ -438,6 +455,9 @@ namespace scarp
       growth_tolerance = prm.get_double("Energy growth tolerance");
       remove_outside   = prm.get("Points leaving the mesh") == "remove";
       prm.leave_subsection();
+      removes_points = remove_outside;
+      for (const auto &m : materials)
+        removes_points = removes_points || m->removal_stretch() > 0;
       {
         // The defaults of this scene's declarations, for the fingerprint.
         ParameterHandler unset;

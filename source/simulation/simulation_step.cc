@@ -340,13 +340,26 @@ namespace scarp
       nonlocal_damage_step(stage);
       {
         TimerOutput::Scope scope(timer, "sort particles");
-        if (report.n_changed_cell > 0)
+        // Removed points were moved out of the mesh: the sort drops them.
+        if (report.n_changed_cell > 0 || report.n_removed_stretched > 0)
           mpm->sort_points(communicator);
         else
           mpm->update_reference_locations();
       }
       if (report.n_outside > 0)
         loop.counters.points_removed += report.n_outside;
+      if (report.n_removed_stretched > 0)
+        {
+          if (!removal_reported)
+            pcout << "Stage " << stage.name << ": t = " << loop.time
+                  << " s: removing damaged points stretched beyond their "
+                     "material's <Remove points stretched beyond> ("
+                  << report.n_removed_stretched
+                  << " in this step; the total is in summary.json)"
+                  << std::endl;
+          removal_reported = true;
+          loop.counters.points_removed += report.n_removed_stretched;
+        }
       if (loop.failure.first_damage_time < 0 && report.max_damage > 0.5 &&
           stage.damage && any_damage)
         loop.failure.first_damage_time = loop.time;

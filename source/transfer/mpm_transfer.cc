@@ -1017,6 +1017,7 @@ namespace scarp
           if (b.F.empty())
             continue;
           const materials::Material &material = *materials[mat];
+          const double removal_stretch        = material.removal_stretch();
           b.stored_energy.resize(b.F.size());
           materials::MaterialBatch batch;
           batch.n             = b.F.size();
@@ -1075,6 +1076,20 @@ namespace scarp
                     }
                 }
               add_point_measures(p, b.position[k], gravity, report);
+              // A damaged point stretched too far (the authors' removal):
+              // its energy is booked here, the point leaves the mesh at the
+              // end of the step. The damage is that of the step before.
+              if (removal_stretch > 0 && material.removable(p + layout.state))
+                {
+                  const double m = p[layout.mass];
+                  report.removed_kinetic_energy +=
+                    0.5 * m *
+                    layout.get_vector(p, layout.velocity).norm_square();
+                  report.removed_gravitational_energy -=
+                    m * (gravity * b.position[k]);
+                  report.n_removed_stretched += 1;
+                  removal_ids.push_back(b.id[k]);
+                }
               if (damage_points && material.has_damage())
                 {
                   const double *state = p + layout.state;
@@ -1335,8 +1350,32 @@ namespace scarp
           remap_momentum(report);
           g2p(false, true, velocity_remapped, damage_points);
         }
+      if (!removal_ids.empty())
+        move_removed_points_out();
       return report;
     }
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::move_removed_points_out()
+    {
+      // Beyond the mesh's upper corner by its size: the next sort drops
+      // them, as it drops points that left the mesh. A rare event, so one
+      // pass over the points is cheap.
+      const BoundingBox<dim> &domain = grid.domain();
+      Point<dim>              outside;
+      for (unsigned int d = 0; d < dim; ++d)
+        outside[d] =
+          domain.get_boundary_points().second[d] + domain.side_length(d);
+      std::sort(removal_ids.begin(), removal_ids.end());
+      for (auto &particle : particle_handler)
+        if (std::binary_search(removal_ids.begin(),
+                               removal_ids.end(),
+                               particle.get_id()))
+          particle.set_location(outside);
+      removal_ids.clear();
+    }
+
 
     template <int dim>
     StepReport

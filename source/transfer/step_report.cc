@@ -38,7 +38,8 @@ namespace scarp
                                   n_inverted,
                                   n_outside,
                                   n_too_fast,
-                                  n_changed_cell};
+                                  n_changed_cell,
+                                  n_removed_stretched};
       Utilities::MPI::sum(sums, communicator, sums);
       unsigned int k = 0;
       for (double *x : {&kinetic_energy,
@@ -66,7 +67,8 @@ namespace scarp
                         &n_inverted,
                         &n_outside,
                         &n_too_fast,
-                        &n_changed_cell})
+                        &n_changed_cell,
+                        &n_removed_stretched})
         *x = sums[k++];
       // Ranks accumulate the squared speed (no root per point).
       std::vector<double> maxima = {max_speed, max_damage};

@@ -181,6 +181,17 @@ subsection Stage vibrate
   set Deposit check interval = 0
 end"
 
+# A material's own check (not a pattern): one line naming the material,
+# the entry and the value, without deal.II's exception dump.
+expect_line removal_stretch_below_one \
+  "Material chalk: 'Remove points stretched beyond' must be 0 (never) or > 1, got 0.5." \
+"include $src/prm/joss_bay.prm
+subsection Material chalk
+  subsection Damage
+    set Remove points stretched beyond = 0.5
+  end
+end"
+
 # Includes resolve relative to the including file at any depth, and an
 # error names the file and line the user wrote: nested/a/top.prm includes
 # ../b/mid.prm, which includes leaf.prm (next to mid.prm, not the working

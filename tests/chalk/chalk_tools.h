@@ -49,6 +49,8 @@ namespace scarp_chalk_test
     double      r_t                 = 1e-9;
     double      r_c                 = 1e-2;
     double      r_g                 = 5e-3;
+    /// Further entries of subsection Damage (each a full "    set" line).
+    std::string damage_extra;
 
     std::string
     text(const std::string &name) const
@@ -70,7 +72,8 @@ namespace scarp_chalk_test
              "\n    set Nonlocal weight = " + weight +
              "\n    set Residual tensile ratio = " + num(r_t) +
              "\n    set Residual compressive ratio = " + num(r_c) +
-             "\n    set Residual shear ratio = " + num(r_g) + "\n  end\nend\n";
+             "\n    set Residual shear ratio = " + num(r_g) + "\n" +
+             damage_extra + "  end\nend\n";
     }
   };
 

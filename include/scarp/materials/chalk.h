@@ -57,7 +57,11 @@ namespace scarp
         damage_dissipation  = 10, ///< [J/m^3]
         damage_driver       = 11, ///< last local driver Y [Pa] (output)
         nonlocal_driver     = 12, ///< last non-local driver Ybar [Pa] (output)
-        n_state             = 13
+        n_state             = 13,
+        /// 3 values, only with <Remove points stretched beyond>: the
+        /// stretch of the point's extent along x, y, z (each step times
+        /// the diagonal of its deformation increment, so shear leaves it).
+        axis_stretch = 13
       };
 
       /**
@@ -88,6 +92,11 @@ namespace scarp
         /// non-local average, as the authors' code does; otherwise they stay
         /// in the denominator with Y = 0.
         bool exclude_fully_damaged = false;
+        /// Remove points with d >= removal_damage whose extent along x or
+        /// y (z) has stretched beyond removal_stretch times its length, as
+        /// the authors' code does; 0: never.
+        double removal_stretch = 0.;
+        double removal_damage  = 0.9;
 
         /// Declare the entries in the current subsection.
         static void
@@ -122,7 +131,7 @@ namespace scarp
       unsigned int
       n_state_variables() const override
       {
-        return n_state;
+        return parameters.removal_stretch > 0 ? n_state + 3 : n_state;
       }
 
       /// elastic_strain_xx..xz, plastic_strain, plastic_dissipation,
@@ -185,6 +194,25 @@ namespace scarp
       /// d = 1 - 1e-6); kappa = 0 for d = 0.
       void
       set_initial_damage(double *state, const double d) const override;
+
+      double
+      removal_stretch() const override
+      {
+        return parameters.removal_stretch;
+      }
+
+      /// d >= <Removal damage> and an axis stretch beyond <Remove points
+      /// stretched beyond> (the authors' criterion, on the point's extent
+      /// along the axes, not on F, whose fibres also stretch in shear).
+      bool
+      removable(const double *state) const override
+      {
+        return parameters.removal_stretch > 0 &&
+               state[damage_variable] >= parameters.removal_damage &&
+               std::max({state[axis_stretch],
+                         state[axis_stretch + 1],
+                         state[axis_stretch + 2]}) > parameters.removal_stretch;
+      }
 
       /// False for d = 1 if Nonlocal exclude fully damaged is set.
       bool

@@ -157,6 +157,23 @@ namespace scarp
         return true;
       }
 
+      /// A factor > 1 if points of this material are removed once damaged
+      /// and stretched beyond it (removable() decides, from the state); 0
+      /// (the default): never removed.
+      virtual double
+      removal_stretch() const
+      {
+        return 0.;
+      }
+
+      /// Whether a point with this state is to be removed: damaged enough
+      /// and stretched beyond removal_stretch().
+      virtual bool
+      removable(const double * /*state*/) const
+      {
+        return false;
+      }
+
       /// Set a point to fully damaged (d = 1), e.g. a pre-existing crack.
       /// The value the non-local driver must exceed for damage to grow
       /// (refinement ahead of the damage front); +inf without damage.

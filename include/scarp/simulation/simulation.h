@@ -401,6 +401,12 @@ namespace scarp
       double       balance_tolerance = 0.1;
       bool         remove_outside    = false;
       unsigned int max_steps         = 100000000;
+      /// Points can leave the scene (remove_outside, or a material's
+      /// removal of stretched damaged points): the statistics book their
+      /// energy (removed_energy).
+      bool removes_points = false;
+      /// The first removal of stretched points of the run was announced.
+      bool removal_reported = false;
 
       /// The state of the time loop (time, step, stage, energies, mass
       /// scaling, failure, counters): what a checkpoint saves of it.

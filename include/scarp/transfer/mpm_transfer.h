@@ -333,6 +333,13 @@ namespace scarp
                      StepReport                         &report,
                      DamagePoints<dim>                  *damage_points,
                      const Tensor<1, dim>               &gravity);
+      /// Ids of the damaged points that stretched too far in this step
+      /// (materials::Material::removal_stretch()), and moving them out of
+      /// the mesh at the end of the step, so that the sort after it drops
+      /// them as it drops points that left the mesh.
+      std::vector<types::particle_index> removal_ids;
+      void
+      move_removed_points_out();
       /// F-bar scratch of one cell: its points' velocity gradients,
       /// deformation increments and volumes at the start of the step.
       std::vector<Tensor<2, dim>> cell_L, cell_delta_F;

@@ -66,6 +66,10 @@ namespace scarp
       /// left the mesh in this step (removed in the sort after it; summed).
       double removed_kinetic_energy       = 0;
       double removed_gravitational_energy = 0;
+      /// Damaged points removed because they stretched too far (material
+      /// entry <Remove points stretched beyond>; their energies are in the
+      /// two above). Not a failure.
+      double n_removed_stretched = 0;
 
       /// The bytes of a report that a checkpoint holds: the members before
       /// removed_kinetic_energy (what the next step needs of the last
