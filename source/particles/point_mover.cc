@@ -180,7 +180,6 @@ namespace scarp
     PointMover<dim>::move_points(Particles::ParticleHandler<dim> &particles,
                                  const Triangulation<dim>        &triangulation,
                                  const bool                       exchange,
-                                 const bool                       recount,
                                  const MPI_Comm                   communicator)
     {
       // What a point that changes ranks takes along: its new cell, its
@@ -270,24 +269,20 @@ namespace scarp
       // The points leave their old cells one at a time, in the order in
       // which ParticleHandler::remove_particles() takes them (by cell, then
       // by position in the cell, from the last), so that the points left in
-      // a cell are reordered alike. remove_particles() then calls
-      // update_cached_numbers(), which walks every point and makes two
-      // reductions, in every step in which a point moved. Here only when
-      // it can change something: a cell new to the handler's list (added
-      // at its end, which it puts back in order) or points that changed
-      // ranks. Otherwise the list stays in order, remove_particle() and
-      // insert_particle() keep the local count, and the global count and
-      // the largest id do not change (only the largest number of points
-      // per cell, n_global_max_particles_per_cell(), which scarp does not
-      // use, is left as it was).
+      // a cell are reordered alike. remove_particles() would then call
+      // update_cached_numbers(); here the counts stay right without it
+      // (remove_particle() and insert_particle() keep the local count, and
+      // the global count and the largest id do not change: no point left
+      // the mesh; only the largest number of points per cell,
+      // n_global_max_particles_per_cell(), which scarp does not use, is
+      // left as it was), and the order of the list waits for
+      // restore_order().
       std::sort(moves.begin(), moves.end(), [](const Move &a, const Move &b) {
         return a.old_cell > b.old_cell ||
                (a.old_cell == b.old_cell && a.index_in_cell > b.index_in_cell);
       });
       for (const Move &move : moves)
         particles.remove_particle(move.point);
-      if (recount)
-        particles.update_cached_numbers();
       n_last_moved = moves.size();
       n_last_sent  = n_leaving_rank;
       moves.clear();
@@ -320,14 +315,15 @@ namespace scarp
       const unsigned int all = least[0];
       if (all >= 4)
         {
-          move_points(particles,
-                      triangulation,
-                      all == 4,
-                      all == 4 || least[1] == 0,
-                      communicator);
+          move_points(particles, triangulation, all == 4, communicator);
+          // A cell new to a rank's list, from this rank or another, is at
+          // the end of that list.
+          order_stale = order_stale || all == 4 || least[1] == 0;
           n_moved_since_full_sort += n_last_moved;
           return true;
         }
+      // The full sort walks the points in the order of the list.
+      restore_order(particles);
       moves.clear();
       gained.clear();
       n_last_moved            = 0;
@@ -335,6 +331,17 @@ namespace scarp
       n_moved_since_full_sort = 0;
       particles.sort_particles_into_subdomains_and_cells();
       return false;
+    }
+
+
+    template <int dim>
+    void
+    PointMover<dim>::restore_order(Particles::ParticleHandler<dim> &particles)
+    {
+      if (!order_stale)
+        return;
+      particles.update_cached_numbers();
+      order_stale = false;
     }
 
 

@@ -228,6 +228,9 @@ namespace scarp
               loop.stage.index + 1 < stages.size())
             write_checkpoint();
         }
+      // The points in the handler's order for whoever reads them after the
+      // run (particle_handler()).
+      order_points();
       if (cliff && loop.failure.after_failure_taken && stop_after_failure)
         {
           // The debris is still moving: only the onset means something.

@@ -99,6 +99,7 @@ namespace scarp
     Simulation<dim>::write_checkpoint()
     {
       TimerOutput::Scope scope(timer, "checkpoint");
+      order_points();
       std::ostringstream out;
       {
         boost::archive::binary_oarchive archive(out);

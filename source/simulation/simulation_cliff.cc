@@ -28,8 +28,9 @@ namespace scarp
 
     template <int dim>
     std::vector<postprocess::CliffDiagnostics::Particle>
-    Simulation<dim>::gather_cliff_points() const
+    Simulation<dim>::gather_cliff_points()
     {
+      order_points();
       std::vector<double> local;
       for (const auto &particle : particles)
         {
@@ -227,9 +228,9 @@ namespace scarp
     // Instantiations (the other members are in the other
     // simulation_*.cc files).
     template std::vector<postprocess::CliffDiagnostics::Particle>
-    Simulation<2>::gather_cliff_points() const;
+    Simulation<2>::gather_cliff_points();
     template std::vector<postprocess::CliffDiagnostics::Particle>
-    Simulation<3>::gather_cliff_points() const;
+    Simulation<3>::gather_cliff_points();
     template void
     Simulation<2>::cliff_snapshot(const std::string &tag);
     template void

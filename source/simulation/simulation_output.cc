@@ -77,6 +77,7 @@ namespace scarp
       if (!outputs_enabled)
         return;
       TimerOutput::Scope scope(timer, "output");
+      order_points();
       vtu->write_particles(particles, layout, loop.time, loop.output_index);
       if (write_mesh_files)
         vtu->write_mesh(grid,
@@ -134,7 +135,8 @@ namespace scarp
         row.push_back(loop.energy.removed_energy);
       if (reference_displacement)
         {
-          double       norm         = 0;
+          double norm = 0;
+          order_points();
           const double e            = reference_error(&norm);
           loop.reference_error.last = e;
           loop.reference_error.max  = std::max(loop.reference_error.max, e);

@@ -48,7 +48,9 @@ namespace scarp
     Simulation<dim>::refine_mesh()
     {
       TimerOutput::Scope scope(timer, "refinement");
-      auto              &tria = grid.triangulation();
+      // The split and the transfer walk the points in the list's order.
+      order_points();
+      auto &tria = grid.triangulation();
       ++loop.counters.refinement_checks;
       // Seeds: cells with a damaged point, or with a point whose non-local
       // driver approaches its damage threshold (gathered in the non-local

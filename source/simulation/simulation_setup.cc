@@ -93,6 +93,7 @@ namespace scarp
       if (!points_out_of_balance())
         return;
       TimerOutput::Scope scope(timer, "load balancing");
+      order_points();
       balance_load();
       mpm->setup();
       local_boxes.clear();

@@ -231,8 +231,9 @@ namespace scarp
 
     template <int dim>
     double
-    Simulation<dim>::fast_volume(const double speed) const
+    Simulation<dim>::fast_volume(const double speed)
     {
+      order_points();
       double volume = 0;
       for (const auto &particle : particles)
         {

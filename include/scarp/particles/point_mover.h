@@ -86,6 +86,34 @@ namespace scarp
            const Triangulation<dim>        &triangulation,
            const MPI_Comm                   communicator);
 
+      /**
+       * Put the particle handler's list of cells back in the order of the
+       * active cells if a sort() left it out of order, and count the points
+       * again (ParticleHandler::update_cached_numbers()). Collective.
+       *
+       * A point moved into a cell that held none, here or on another rank,
+       * adds the cell at the end of the handler's list. The transfer does
+       * not mind (it reaches the points cell by cell, in the order of the
+       * active cells), and the counts stay right (the point is removed and
+       * inserted on its ranks, and none leaves the mesh), but an iteration
+       * over all points follows the list: output, diagnostics, splitting,
+       * the full sort. The handler's own recount walks every active cell,
+       * rebuilds its list and visits every point, which at the front of a
+       * flowing debris happened nearly every step (a tenth of the step of
+       * the rank holding the front); it now waits until something reads the
+       * list. The full sort calls this itself.
+       */
+      void
+      restore_order(Particles::ParticleHandler<dim> &particles);
+
+      /// Whether the handler's list of cells is in order (restore_order()
+      /// has nothing to do).
+      bool
+      order_restored() const
+      {
+        return !order_stale;
+      }
+
       /// The points moved by the last sort() on this rank (0 if the full
       /// sort ran).
       std::size_t
@@ -122,14 +150,11 @@ namespace scarp
                      const std::vector<unsigned int> &handles);
 
       /// Move the points of @p moves; with @p exchange (collective) hand
-      /// those bound for other ranks over to them; with @p recount
-      /// (collective) let the particle handler put its list of cells in
-      /// order and count its points again, as its remove_particles() does.
+      /// those bound for other ranks over to them.
       void
       move_points(Particles::ParticleHandler<dim> &particles,
                   const Triangulation<dim>        &triangulation,
                   const bool                       exchange,
-                  const bool                       recount,
                   const MPI_Comm                   communicator);
 
       /// A point leaving its cell.
@@ -158,6 +183,9 @@ namespace scarp
       /// out of order.
       bool        new_cell_entry = false;
       std::size_t n_last_sent    = 0;
+      /// Whether a sort() left the handler's list of cells out of order
+      /// (the same on every rank: decided from reduced values).
+      bool order_stale = false;
       /// Points moved here since the last full sort.
       std::size_t n_moved_since_full_sort = 0;
       /// See cells_gained().

@@ -272,7 +272,17 @@ namespace scarp
       /// ranks; collective): the onset of a failure and the end of mass
       /// scaling need more than a point or two (a flake at the notch).
       double
-      fast_volume(const double speed) const;
+      fast_volume(const double speed);
+      /// Put the particle handler's list of cells in order before an
+      /// iteration over all points that depends on it (sums, output,
+      /// splitting; transfer::MpmTransfer::restore_point_order()): the
+      /// point mover leaves it out of order when points enter empty cells.
+      /// Collective.
+      void
+      order_points()
+      {
+        mpm->restore_point_order();
+      }
 
       /// Whether a stage scales the mass (statistics.csv then carries
       /// mass_scaling_dissipation).
@@ -335,7 +345,7 @@ namespace scarp
       checkpoint_if_due();
       /// Material points of the cliff bodies, gathered on rank 0.
       std::vector<postprocess::CliffDiagnostics::Particle>
-      gather_cliff_points() const;
+      gather_cliff_points();
       /// Write cliff_<tag>_particles.csv (rank 0); at "end" also the surface
       /// profile and the diagnostics, which go into the summary.
       void

@@ -184,6 +184,16 @@ namespace scarp
       void
       sort_points(const MPI_Comm communicator);
 
+      /// Put the particle handler's list of cells in order if
+      /// sort_points() left it out of order
+      /// (particles::PointMover::restore_order()): before anything iterates
+      /// over all points in the handler's order. Collective.
+      void
+      restore_point_order()
+      {
+        point_mover.restore_order(particle_handler);
+      }
+
     private:
       particles::PointMover<dim> point_mover;
       std::vector<typename particles::PointMover<dim>::CellPoints>
