@@ -48,9 +48,7 @@ namespace scarp
     Simulation<dim>::refine_mesh()
     {
       TimerOutput::Scope scope(timer, "refinement");
-      // The split and the transfer walk the points in the list's order.
-      order_points();
-      auto &tria = grid.triangulation();
+      auto              &tria = grid.triangulation();
       ++loop.counters.refinement_checks;
       // Seeds: cells with a damaged point, or with a point whose non-local
       // driver approaches its damage threshold (gathered in the non-local
@@ -79,6 +77,9 @@ namespace scarp
       if (grid::RefinementMarker<dim>::mark(
             tria, seeds, buffer, grid.max_refinement_level) == 0)
         return;
+      // The split and the transfer walk the points in the list's order
+      // (the check above reads them cell by cell).
+      order_points();
       // Refinement repartitions the mesh as well, weighing each child of a
       // refined cell as its parent (balance_load()'s weight): the points
       // the child holds after the split, if they were spread evenly.
