@@ -277,6 +277,10 @@ namespace scarp
         unsigned int point_begin, point_end;
       };
       std::vector<OccupiedCell> occupied_cells;
+      /// The list of the step before, kept while the new one is made.
+      std::vector<OccupiedCell> previous_cells;
+      /// Scratch for a Q1 cell's dof indices.
+      std::vector<types::global_dof_index> cell_dofs;
       /// Whether the node arrays of occupied_cells still hold (until the
       /// next setup()).
       bool node_arrays_valid = false;
@@ -304,6 +308,15 @@ namespace scarp
       /// Rebuild occupied_cells and the node and point arrays.
       void
       find_occupied_cells();
+
+      /// Give @p to the nodes (and patch) of @p from, the same cell's entry
+      /// in the list of the step before.
+      void
+      take_nodes(const OccupiedCell &from, OccupiedCell &to);
+
+      /// Append the nodes of the cell of @p occupied to the node arrays.
+      void
+      append_nodes(OccupiedCell &occupied);
 
       /// Scratch of one cell's constitutive update for one material, kept
       /// between calls so that its storage is not allocated again.
