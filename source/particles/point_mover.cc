@@ -281,8 +281,12 @@ namespace scarp
         return a.old_cell > b.old_cell ||
                (a.old_cell == b.old_cell && a.index_in_cell > b.index_in_cell);
       });
+      lost.clear();
       for (const Move &move : moves)
-        particles.remove_particle(move.point);
+        {
+          lost.push_back(move.old_cell);
+          particles.remove_particle(move.point);
+        }
       n_last_moved = moves.size();
       n_last_sent  = n_leaving_rank;
       moves.clear();
@@ -326,6 +330,7 @@ namespace scarp
       restore_order(particles);
       moves.clear();
       gained.clear();
+      lost.clear();
       n_last_moved            = 0;
       n_last_sent             = 0;
       n_moved_since_full_sort = 0;

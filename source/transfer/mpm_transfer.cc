@@ -1167,6 +1167,14 @@ namespace scarp
       candidate_cells.erase(std::unique(candidate_cells.begin(),
                                         candidate_cells.end()),
                             candidate_cells.end());
+      // The cells whose points changed: the others hold the points of the
+      // list made before this sort, in its order.
+      changed_cells.clear();
+      for (const auto &cell : point_mover.cells_gained())
+        changed_cells.push_back(cell->active_cell_index());
+      for (const auto &cell : point_mover.cells_lost())
+        changed_cells.push_back(cell->active_cell_index());
+      std::sort(changed_cells.begin(), changed_cells.end());
     }
 
 
@@ -1182,16 +1190,15 @@ namespace scarp
           particle_handler.n_locally_owned_particles() == point_handle.size())
         return;
       // The occupied cells, in order, with their points. The step before's
-      // list is kept aside: a cell occupied then keeps its node ranges.
+      // list is kept aside: a cell occupied then keeps its node ranges, and
+      // its points if they did not change.
       std::swap(occupied_cells, previous_cells);
+      std::swap(point_handle, previous_point_handle);
       occupied_cells.clear();
       point_handle.clear();
       point_properties.clear();
-      auto      &pool  = particle_handler.get_property_pool();
-      const auto visit = [&](const auto &cell) {
-        const auto particles = particle_handler.particles_in_cell(cell);
-        if (particles.begin() == particles.end())
-          return;
+      auto      &pool = particle_handler.get_property_pool();
+      const auto add  = [&](const auto &cell) -> OccupiedCell  &{
         OccupiedCell &occupied = occupied_cells.emplace_back();
         occupied.cell          = cell;
         // Cells are axis-aligned squares (cubes): the edge is the
@@ -1199,6 +1206,13 @@ namespace scarp
         occupied.x0          = cell->vertex(0);
         occupied.h           = cell->vertex(1)[0] - occupied.x0[0];
         occupied.point_begin = point_handle.size();
+        return occupied;
+      };
+      const auto visit = [&](const auto &cell) {
+        const auto particles = particle_handler.particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          return;
+        OccupiedCell &occupied = add(cell);
         for (const auto &particle : particles)
           {
             const unsigned int handle = particle.get_local_index();
@@ -1209,14 +1223,46 @@ namespace scarp
       };
       // Walking every active cell costs a few per cent of a step of the
       // flowing debris on a refined mesh mostly of air; after the point
-      // mover's sort only the candidate cells can hold points.
+      // mover's sort only the candidate cells can hold points, and only
+      // those it put points into or took points out of hold other points
+      // than before. The others' handles are copied from the list before
+      // (reading them from the particle handler, a list node and a vector
+      // per cell scattered over the heap, waited on memory for 3 % of the
+      // step of the rank holding a debris front). The pool's storage may
+      // have moved, so the property pointers are taken anew.
       // The count guards against a change of the points that bypassed
       // sort_points(); then every cell is visited after all.
       bool found_all = false;
       if (candidate_cells_valid)
         {
+          std::size_t j = 0, k = 0;
           for (const auto &cell : candidate_cells)
-            visit(cell);
+            {
+              const unsigned int index = cell->active_cell_index();
+              while (j < previous_cells.size() &&
+                     previous_cells[j].cell->active_cell_index() < index)
+                ++j;
+              while (k < changed_cells.size() && changed_cells[k] < index)
+                ++k;
+              if (j == previous_cells.size() ||
+                  previous_cells[j].cell != cell ||
+                  (k < changed_cells.size() && changed_cells[k] == index))
+                {
+                  visit(cell);
+                  continue;
+                }
+              OccupiedCell &occupied = add(cell);
+              for (unsigned int i = previous_cells[j].point_begin;
+                   i < previous_cells[j].point_end;
+                   ++i)
+                {
+                  const unsigned int handle = previous_point_handle[i];
+                  point_handle.push_back(handle);
+                  point_properties.push_back(
+                    pool.get_properties(handle).data());
+                }
+              occupied.point_end = point_handle.size();
+            }
           found_all =
             point_handle.size() == particle_handler.n_locally_owned_particles();
           if (!found_all)

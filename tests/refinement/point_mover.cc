@@ -139,7 +139,9 @@ namespace
     // every rank), and in which that changed this rank's order of points.
     unsigned int n_stale = 0, n_out_of_order = 0;
     bool same = true, followed = true, gained_ok = true, count_ok = true,
-         same_order = true;
+         same_order = true, lost_ok = true;
+    // Cells the mover left alone and cells whose points it changed.
+    unsigned int n_unchanged_cells = 0, n_changed_cells = 0;
     // Without the compaction by the full sort (the test moves most points
     // every step; the runs of scarp a few in a thousand).
     PointMover<dim> mover(1e30);
@@ -193,8 +195,21 @@ namespace
               cells.insert(cell->id());
           return cells;
         };
-        const std::set<CellId> held  = occupied(moved);
-        const bool             local = mover.sort(moved, tria, MPI_COMM_WORLD);
+        const std::set<CellId> held = occupied(moved);
+        // Each cell's points (id and property pool handle) in its order.
+        const auto points_by_cell = [&tria](const auto &handler) {
+          std::map<unsigned int,
+                   std::vector<std::pair<types::particle_index, unsigned int>>>
+            points;
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const auto &point : handler.particles_in_cell(cell))
+                points[cell->active_cell_index()].emplace_back(
+                  point.get_id(), point.get_local_index());
+          return points;
+        };
+        const auto points_before = points_by_cell(moved);
+        const bool local         = mover.sort(moved, tria, MPI_COMM_WORLD);
         if (local)
           {
             // What MpmTransfer relies on to skip the walk over all cells:
@@ -210,6 +225,30 @@ namespace
               }
             for (const CellId &id : occupied(moved))
               gained_ok = gained_ok && candidates.count(id) == 1;
+            // What MpmTransfer relies on to copy a cell's points from its
+            // list before the sort: a cell neither gained nor lost holds
+            // the same points, in the same order, in the same pool slots.
+            std::set<unsigned int> changed;
+            for (const auto &cell : mover.cells_gained())
+              changed.insert(cell->active_cell_index());
+            for (const auto &cell : mover.cells_lost())
+              {
+                changed.insert(cell->active_cell_index());
+                lost_ok = lost_ok && cell->is_locally_owned();
+              }
+            const auto points_after = points_by_cell(moved);
+            for (const auto &[index, points] : points_before)
+              if (changed.count(index) == 0)
+                {
+                  const auto after = points_after.find(index);
+                  lost_ok          = lost_ok && after != points_after.end() &&
+                            after->second == points;
+                  ++n_unchanged_cells;
+                }
+            for (const auto &[index, points] : points_after)
+              if (changed.count(index) == 0)
+                lost_ok = lost_ok && points_before.count(index) == 1;
+            n_changed_cells += changed.size();
             // It takes the points out one at a time, not through
             // remove_particles(), which recounts them, and it does not
             // recount (also not after points changed ranks): the local count
@@ -304,6 +343,15 @@ namespace
     check(gained_ok,
           where + "after each move every cell with points held points "
                   "before or is among the cells gained, which hold points");
+    lost_ok = Utilities::MPI::min(static_cast<int>(lost_ok), MPI_COMM_WORLD);
+    n_unchanged_cells = Utilities::MPI::sum(n_unchanged_cells, MPI_COMM_WORLD);
+    n_changed_cells   = Utilities::MPI::sum(n_changed_cells, MPI_COMM_WORLD);
+    out() << "  " << where << n_unchanged_cells << " cells kept their points, "
+          << n_changed_cells << " gained or lost some (over all moves)"
+          << std::endl;
+    check(lost_ok && n_unchanged_cells > 0 && n_changed_cells > 0,
+          where + "after each move a cell neither gained nor lost holds the "
+                  "same points in the same order and pool slots as before");
     check(followed,
           where + "PointMover moves the points itself in every step but the "
                   "last, also those that change ranks");

@@ -140,6 +140,17 @@ namespace scarp
         return gained;
       }
 
+      /// The locally owned cells the last sort() took points out of (to
+      /// this rank's cells or another's; repeats possible, in no order).
+      /// Valid only if that sort() returned true: then a cell in neither
+      /// this list nor cells_gained() holds the same points in the same
+      /// order as before it.
+      const std::vector<typename Triangulation<dim>::active_cell_iterator> &
+      cells_lost() const
+      {
+        return lost;
+      }
+
     private:
       /// Set the reference locations of the points that stay and find the
       /// cells of those that left; false if one leaves this rank's cells or
@@ -188,8 +199,9 @@ namespace scarp
       bool order_stale = false;
       /// Points moved here since the last full sort.
       std::size_t n_moved_since_full_sort = 0;
-      /// See cells_gained().
-      std::vector<typename Triangulation<dim>::active_cell_iterator> gained;
+      /// See cells_gained() and cells_lost().
+      std::vector<typename Triangulation<dim>::active_cell_iterator> gained,
+        lost;
       /// The cells and handles of sort(particles, communicator).
       std::vector<CellPoints>   own_cells;
       std::vector<unsigned int> own_handles;

@@ -277,8 +277,14 @@ namespace scarp
         unsigned int point_begin, point_end;
       };
       std::vector<OccupiedCell> occupied_cells;
-      /// The list of the step before, kept while the new one is made.
+      /// The list of the step before and its point handles, kept while
+      /// the new one is made.
       std::vector<OccupiedCell> previous_cells;
+      std::vector<unsigned int> previous_point_handle;
+      /// After a sort_points() in which the point mover moved the points:
+      /// the active cell indices (sorted, repeats possible) of the cells
+      /// whose points changed.
+      std::vector<unsigned int> changed_cells;
       /// Scratch for a Q1 cell's dof indices.
       std::vector<types::global_dof_index> cell_dofs;
       /// Whether the node arrays of occupied_cells still hold (until the
