@@ -12,6 +12,10 @@ output nearest to the asked time is drawn; "end" takes the run's last
 output. Prints, per run, the output used, its time after the onset, its
 kinetic energy and the points faster than --fast.
 
+With --bands X1,X2,... it also prints where the kinetic energy is: its
+share in the bands of x between the edges, and how much of it is on fully
+damaged points (d >= 0.99).
+
 Uses the Debian package python3-matplotlib, hence /usr/bin/python3.
 
 Example:
@@ -50,6 +54,23 @@ def parse_run(text):
     return label, directory, when
 
 
+def band_energies(p, speed, edges):
+    """Kinetic energy of the points in each band of x (edges ascending), and
+    of the fully damaged ones among them: [(name, energy, damaged)]."""
+    names = ([f"x < {edges[0]:g} m"]
+             + [f"{a:g} <= x < {b:g} m" for a, b in zip(edges, edges[1:])]
+             + [f"{edges[-1]:g} m <= x"])
+    energy = [0.] * (len(edges) + 1)
+    damaged = [0.] * (len(edges) + 1)
+    for x, m, v, d in zip(p["x"], p["mass"], speed, p["damage"]):
+        band = sum(1 for e in edges if x >= e)
+        e = 0.5 * m * v * v
+        energy[band] += e
+        if d >= 0.99:
+            damaged[band] += e
+    return list(zip(names, energy, damaged))
+
+
 def main():
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
@@ -64,9 +85,21 @@ def main():
     parser.add_argument("--marker-size", type=float, default=1.5,
                         help="marker area in units of a point's own area")
     parser.add_argument("--dpi", type=int, default=100)
+    parser.add_argument("--bands", default=None, metavar="X1,X2,...",
+                        help="also print where the kinetic energy is: its "
+                             "share in the bands of x between these edges "
+                             "(m), and on fully damaged points (d >= 0.99)")
     args = parser.parse_args()
+    edges = []
+    if args.bands:
+        try:
+            edges = sorted(float(x) for x in args.bands.split(","))
+        except ValueError:
+            sys.exit(f"--bands '{args.bands}': expected numbers separated "
+                     "by commas")
 
     runs = [parse_run(r) for r in args.runs]
+    band_rows = []
     fig, axes = plt.subplots(len(runs), 2, figsize=(14, 4.2 * len(runs)),
                              squeeze=False)
     print("| run | output | t | after the onset | kinetic energy | "
@@ -87,6 +120,8 @@ def main():
         print(f"| {label} | {os.path.basename(pvtu)} | {t:.2f} s | "
               f"{t - onset:.2f} s | {kinetic:.3g} J | "
               f"{n_fast} ({len(speed)}) |")
+        if edges:
+            band_rows.append((label, band_energies(p, speed, edges), kinetic))
         title = f"{label}: t = {t:.2f} s, {t - onset:.2f} s after the onset"
         panels = [(p["damage"], 1.0, "viridis", "damage"),
                   (speed, args.speed_max, "magma", "speed, m/s")]
@@ -118,6 +153,16 @@ def main():
             ax.set_title(f"{title} ({name})", fontsize=9)
             ax.set_xlabel("x (m)")
             ax.set_ylabel("y (m)")
+    if edges:
+        print()
+        print("| run | band | kinetic energy | share | of it on fully damaged "
+              "points (d >= 0.99) |")
+        print("|---|---|---|---|---|")
+        for label, bands, kinetic in band_rows:
+            for name, energy, damaged in bands:
+                share = 100. * energy / kinetic if kinetic > 0 else 0.
+                print(f"| {label} | {name} | {energy:.3g} J | {share:.1f} % | "
+                      f"{damaged:.3g} J |")
     fig.tight_layout()
     fig.savefig(args.output, dpi=args.dpi)
     print(f"wrote {args.output}")

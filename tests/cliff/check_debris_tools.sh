@@ -23,7 +23,9 @@
 #   "@end" the last; the kinetic energy of masses 2 and 1 at speeds 5 and
 #   0.4 m/s is 25.08 J at 2.9 s and 6.33 J at 4 s (one point faster than
 #   0.5 m/s); the points lie in one row (no extent in y); a run without a
-#   failure onset is refused.
+#   failure onset is refused. With --bands 0.5 the energy at 2.9 s splits
+#   into 25 J at x = 0 (99.7 %, undamaged) and 0.08 J at x = 1 (0.3 %, all
+#   of it on the fully damaged point).
 # Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
 set -euo pipefail
 src="$2"; run="$3"
@@ -101,6 +103,16 @@ echo "$out"
 expect "$out" "| A | particles_00001.pvtu | 2.90 s | 0.90 s | 25.1 J | 1 (2) |" "A@1"
 expect "$out" "| B | particles_00003.pvtu | 4.00 s | 2.00 s | 6.33 J | 1 (2) |" "B@end"
 head -c 8 snapshots.png | grep -q PNG || fail "no PNG written"
+out=$(/usr/bin/python3 "$src/tools/plot_snapshots.py" --output bands.png \
+        --bands 0.5 "A=a@1")
+echo "$out"
+expect "$out" "| A | x < 0.5 m | 25 J | 99.7 % | 0 J |" "--bands, first band"
+expect "$out" "| A | 0.5 m <= x | 0.08 J | 0.3 % | 0.08 J |" "--bands, last band"
+if /usr/bin/python3 "$src/tools/plot_snapshots.py" --output bad.png \
+     --bands 0.5,x "A=a@1" > bad.out 2>&1; then
+  fail "--bands with a non-number was accepted"
+fi
+grep -q "expected numbers" bad.out || { cat bad.out; fail "--bands message"; }
 if /usr/bin/python3 "$src/tools/plot_snapshots.py" --output c.png "C=c@1" > c.out 2>&1; then
   fail "a run without a failure onset was accepted"
 fi
