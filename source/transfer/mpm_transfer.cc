@@ -1152,9 +1152,13 @@ namespace scarp
       // The mover left every point in a cell that held points before or in
       // one it put points into: only these can hold points now. Sorted by
       // active cell index, the order of the active cell iteration.
+      // The occupied cells are in that order already: only the few gained
+      // cells are sorted, then merged in (sorting the whole list took 2 %
+      // of the step of the rank holding a debris front).
       candidate_cells.clear();
       for (const OccupiedCell &occupied : occupied_cells)
         candidate_cells.push_back(occupied.cell);
+      const std::size_t n_held = candidate_cells.size();
       for (const auto &cell : point_mover.cells_gained())
         candidate_cells.emplace_back(&grid.triangulation(),
                                      cell->level(),
@@ -1163,7 +1167,13 @@ namespace scarp
       const auto by_index = [](const auto &a, const auto &b) {
         return a->active_cell_index() < b->active_cell_index();
       };
-      std::sort(candidate_cells.begin(), candidate_cells.end(), by_index);
+      std::sort(candidate_cells.begin() + n_held,
+                candidate_cells.end(),
+                by_index);
+      std::inplace_merge(candidate_cells.begin(),
+                         candidate_cells.begin() + n_held,
+                         candidate_cells.end(),
+                         by_index);
       candidate_cells.erase(std::unique(candidate_cells.begin(),
                                         candidate_cells.end()),
                             candidate_cells.end());
