@@ -1249,13 +1249,9 @@ namespace scarp
           for (const auto &cell : candidate_cells)
             {
               const unsigned int index = cell->active_cell_index();
-              while (j < previous_cells.size() &&
-                     previous_cells[j].cell->active_cell_index() < index)
-                ++j;
               while (k < changed_cells.size() && changed_cells[k] < index)
                 ++k;
-              if (j == previous_cells.size() ||
-                  previous_cells[j].cell != cell ||
+              if (!find_previous(cell, j) ||
                   (k < changed_cells.size() && changed_cells[k] == index))
                 {
                   visit(cell);
@@ -1302,12 +1298,7 @@ namespace scarp
           std::size_t j = 0;
           for (OccupiedCell &occupied : occupied_cells)
             {
-              const unsigned int index = occupied.cell->active_cell_index();
-              while (j < previous_cells.size() &&
-                     previous_cells[j].cell->active_cell_index() < index)
-                ++j;
-              if (j < previous_cells.size() &&
-                  previous_cells[j].cell == occupied.cell)
+              if (find_previous(occupied.cell, j))
                 take_nodes(previous_cells[j], occupied);
               else
                 append_nodes(occupied);
@@ -1323,6 +1314,20 @@ namespace scarp
             append_nodes(occupied);
         }
       node_arrays_valid = true;
+    }
+
+
+    template <int dim>
+    bool
+    MpmTransfer<dim>::find_previous(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      std::size_t                                          &j) const
+    {
+      const unsigned int index = cell->active_cell_index();
+      while (j < previous_cells.size() &&
+             previous_cells[j].cell->active_cell_index() < index)
+        ++j;
+      return j < previous_cells.size() && previous_cells[j].cell == cell;
     }
 
 
@@ -1373,18 +1378,17 @@ namespace scarp
         {
           const Utilities::MPI::Partitioner &partitioner =
             *mass.get_partitioner();
-          occupied.patch                             = nullptr;
-          occupied.regular                           = false;
-          std::vector<types::global_dof_index> &dofs = cell_dofs;
-          dofs.resize(Q1Shape<dim>::n);
-          occupied.cell->get_dof_indices(dofs);
+          occupied.patch   = nullptr;
+          occupied.regular = false;
+          cell_dofs.resize(Q1Shape<dim>::n);
+          occupied.cell->get_dof_indices(cell_dofs);
           for (unsigned int i = 0; i < Q1Shape<dim>::n; ++i)
             {
               Point<dim> x;
               for (unsigned int d = 0; d < dim; ++d)
                 x[d] = occupied.x0[d] + occupied.h * Q1Shape<dim>::offset(i, d);
-              node_local.push_back(partitioner.global_to_local(dofs[i]));
-              node_dof.push_back(dofs[i]);
+              node_local.push_back(partitioner.global_to_local(cell_dofs[i]));
+              node_dof.push_back(cell_dofs[i]);
               node_position.push_back(x);
             }
         }

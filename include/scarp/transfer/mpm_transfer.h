@@ -315,6 +315,13 @@ namespace scarp
       void
       find_occupied_cells();
 
+      /// Advance @p j through previous_cells (in the order of the active
+      /// cells) to @p cell; whether the list of the step before holds it
+      /// (then at @p j). Calls with cells in that order share one walk.
+      bool
+      find_previous(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                    std::size_t &j) const;
+
       /// Give @p to the nodes (and patch) of @p from, the same cell's entry
       /// in the list of the step before.
       void
