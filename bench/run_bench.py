@@ -2,7 +2,8 @@
 """Run benchmark scenes of scarp and print their speed (doc/performance.md).
 
     bench/run_bench.py [--scarp [LABEL=]build/scarp ...] [--ranks 1[,2]]
-                       [--repeat 3] [--suite joss|flow|column|column3d|debris|all]
+                       [--copies] [--taskset CPUS] [--repeat 3]
+                       [--suite joss|flow|column|column3d|debris|all]
                        [--sizes 25,50,100] [--sizes3d 8,12] [--shapes Q1,GIMP]
                        [--csv bench.csv] [--work DIR] [SCENE.prm ...]
 
@@ -31,7 +32,10 @@ Figures, from the run's summary.json and statistics.csv:
   and of the parts of the MPM step (summary.json's mpm_step_parts): shape
   functions, P2G, grid update, G2P, constitutive update;
 * with --ranks 1,2: the parallel efficiency, Mps/core on 2 ranks over
-  Mps/core on 1 (wall time; on 2 cores shared with nothing else).
+  Mps/core on 1 (wall time; on 2 cores shared with nothing else); with
+  --copies as well, the same for 2 independent one-rank runs side by side
+  ("np 2x1"), which share the machine's memory and caches but do not
+  communicate: a ceiling for what 2 ranks can reach on the machine.
 
 Benchmarks print figures; nothing is asserted. On a machine shared with
 other jobs, repeat and take medians (--repeat).
@@ -188,10 +192,10 @@ def checkpoint_step(manifest_path):
     sys.exit("run_bench: no step in %s" % manifest_path)
 
 
-def run_once(scarp, prm, ranks, run_dir, resume_from=None):
-    """Run @prm in @run_dir; with @resume_from (an output directory holding
-    a checkpoint), resume a fresh copy of it, and count only the steps of
-    this run."""
+def launch(scarp, prm, ranks, run_dir, resume_from=None, cpus=None):
+    """Start @prm in @run_dir and return what collect() needs; with
+    @resume_from (an output directory holding a checkpoint), resume a fresh
+    copy of it, and count only the steps of this run."""
     os.makedirs(run_dir, exist_ok=True)
     cmd = [os.path.abspath(scarp), os.path.abspath(prm)]
     start_step = 0
@@ -207,26 +211,50 @@ def run_once(scarp, prm, ranks, run_dir, resume_from=None):
     if ranks > 1:
         cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + (
             ["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
-    # Peak memory of this run (one rank: scarp's own; more: the largest
-    # process, mpirun or a rank).
-    rss_file = os.path.join(os.path.abspath(run_dir), "max_rss_kB")
+    if cpus:
+        # Pinned (taskset): the run and its ranks on these CPUs only.
+        cmd = ["taskset", "-c", cpus] + cmd
+    # Peak memory (one rank: scarp's own; more: the largest process,
+    # mpirun or a rank) and CPU time (user, system) of this run.
+    time_file = os.path.join(os.path.abspath(run_dir), "time_M_U_S")
     if os.path.exists("/usr/bin/time"):
-        cmd = ["/usr/bin/time", "-f", "%M", "-o", rss_file] + cmd
+        cmd = ["/usr/bin/time", "-f", "%M %U %S", "-o", time_file] + cmd
+    else:
+        time_file = None
+    log = open(os.path.join(run_dir, "scarp.log"), "w")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.time()
-    with open(os.path.join(run_dir, "scarp.log"), "w") as log:
-        status = subprocess.call(cmd, cwd=run_dir, stdout=log,
-                                 stderr=subprocess.STDOUT)
-    wall_outer = time.time() - t0
+    process = subprocess.Popen(cmd, cwd=run_dir, stdout=log,
+                               stderr=subprocess.STDOUT)
+    return dict(process=process, log=log, before=before, prm=prm,
+                ranks=ranks, run_dir=run_dir, start_step=start_step,
+                time_file=time_file)
+
+
+def collect(job):
+    """Wait for a launch()ed run and return its row of figures."""
+    status = job["process"].wait()
+    job["log"].close()
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime -
-                                                 before.ru_stime)
+    before = job["before"]
+    prm, ranks, run_dir = job["prm"], job["ranks"], job["run_dir"]
     if status != 0:
         sys.exit("run_bench: %s failed (exit %d), see %s/scarp.log" %
                  (prm, status, run_dir))
+    rss_kB = float("nan")
+    if job["time_file"] and os.path.exists(job["time_file"]):
+        with open(job["time_file"]) as f:
+            words = f.read().split()
+        rss_kB = float(words[-3])
+        cpu = float(words[-2]) + float(words[-1])
+    else:
+        # All children waited for since the launch (exact for one run
+        # at a time).
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime -
+                                                     before.ru_stime)
     out = os.path.join(run_dir, output_directory(prm) or ".")
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
+    start_step = job["start_step"]
     ps = point_steps(os.path.join(out, "statistics.csv"), start_step)
     wall = summary["wall_time"]
     row = {"points": summary["material_points"],
@@ -237,12 +265,8 @@ def run_once(scarp, prm, ranks, run_dir, resume_from=None):
            "cpu_s": cpu,
            "Mps_per_core": ps / (wall * ranks) / 1e6,
            "Mps_per_cpu_s": ps / cpu / 1e6 if cpu > 0 else float("nan"),
-           "max_rss_MB": float("nan"), "bytes_per_point": float("nan")}
-    if os.path.exists(rss_file):
-        with open(rss_file) as f:
-            rss_kB = float(f.read().split()[-1])
-        row["max_rss_MB"] = rss_kB / 1024.
-        row["bytes_per_point"] = rss_kB * 1024. / row["points"]
+           "max_rss_MB": rss_kB / 1024.,
+           "bytes_per_point": rss_kB * 1024. / summary["material_points"]}
     phases = summary.get("wall_time_per_phase", {})
     for p in PHASES:
         row["ns " + p] = phases.get(p, 0.) * ranks / ps * 1e9
@@ -253,6 +277,24 @@ def run_once(scarp, prm, ranks, run_dir, resume_from=None):
     return row
 
 
+def run_once(scarp, prm, ranks, run_dir, resume_from=None, cpus=None):
+    """Run @prm in @run_dir (see launch()) and return its row."""
+    return collect(launch(scarp, prm, ranks, run_dir, resume_from, cpus))
+
+
+def run_copies(scarp, prm, copies, run_dir, resume_from=None, cpus=None):
+    """Run @copies independent one-rank copies of @prm at the same time,
+    each in a directory of its own under @run_dir, and return their rows
+    (each copy's own figures). With @cpus, copy c is pinned to the c-th
+    CPU of that comma-separated list."""
+    cpu_list = cpus.split(",") if cpus else []
+    jobs = [launch(scarp, prm, 1, os.path.join(run_dir, "copy%d" % c),
+                   resume_from,
+                   cpu_list[c % len(cpu_list)] if cpu_list else None)
+            for c in range(copies)]
+    return [collect(job) for job in jobs]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scenes", nargs="*")
@@ -261,6 +303,16 @@ def main():
     ap.add_argument("--ranks", default="1",
                     help="comma-separated rank counts, e.g. 1,2 (the "
                     "efficiency of each against the first is printed)")
+    ap.add_argument("--copies", action="store_true",
+                    help="for each rank count N > 1 of --ranks, also run N "
+                    "independent one-rank copies at the same time (\"Nx1\"):"
+                    " what the machine's shared memory and caches leave of "
+                    "one core's speed when N cores work, without any "
+                    "communication")
+    ap.add_argument("--taskset", default=None,
+                    help="run pinned to these CPUs (taskset -c LIST; "
+                    "--copies: copy c on the c-th CPU of the list), to "
+                    "measure each core of a machine whose cores differ")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--suite",
                     choices=["joss", "flow", "column", "column3d", "debris",
@@ -284,6 +336,11 @@ def main():
         label, _, path = b.rpartition("=")
         binaries.append((label or path, path))
     rank_list = [int(r) for r in args.ranks.split(",")]
+    # (ranks, copies): one run on that many ranks (copies 1), or that many
+    # one-rank runs side by side.
+    modes = [(n, 1) for n in rank_list]
+    if args.copies:
+        modes += [(1, n) for n in rank_list if n > 1]
     shapes = args.shapes.split(",")
 
     scenes = [(os.path.splitext(os.path.basename(s))[0], s)
@@ -317,7 +374,7 @@ def main():
             for n_x in (int(n) for n in args.sizes3d.split(",")):
                 scenes.append(column_scene(args.work, shape, n_x, dim=3))
 
-    fields = ["label", "scene", "ranks", "repeat", "points", "cells",
+    fields = ["label", "scene", "ranks", "copies", "repeat", "points", "cells",
               "steps", "point_steps", "wall_s", "cpu_s", "Mps_per_core",
               "Mps_per_cpu_s", "max_rss_MB", "bytes_per_point"] + [
                   "ns " + p for p in PHASES + PARTS]
@@ -329,30 +386,36 @@ def main():
             writer.writeheader()
         for r in range(args.repeat):
             for name, prm in scenes:
-                for ranks in rank_list:
+                for ranks, copies in modes:
+                    mode = "%d" % ranks if copies == 1 else "%dx1" % copies
                     for label, binary in binaries:
-                        run_dir = os.path.join(args.work, "%s_%s_np%d_%d" % (
-                            name, label.replace("/", "_"), ranks, r))
-                        row = run_once(binary, prm, ranks, run_dir,
-                                       resume.get(name))
-                        row.update(label=label, scene=name, ranks=ranks,
-                                   repeat=r)
-                        writer.writerow(row)
-                        f.flush()
-                        results.setdefault((name, label, ranks),
-                                           []).append(row)
-                        print("%-24s %-10s np %d run %d: %.3f Mps/core "
-                              "(wall %.1f s, cpu %.1f s)" % (
-                                  name, label, ranks, r,
-                                  row["Mps_per_core"], row["wall_s"],
-                                  row["cpu_s"]), flush=True)
+                        run_dir = os.path.join(args.work, "%s_%s_np%s_%d" % (
+                            name, label.replace("/", "_"), mode, r))
+                        if copies == 1:
+                            rows = [run_once(binary, prm, ranks, run_dir,
+                                             resume.get(name), args.taskset)]
+                        else:
+                            rows = run_copies(binary, prm, copies, run_dir,
+                                              resume.get(name), args.taskset)
+                        for row in rows:
+                            row.update(label=label, scene=name, ranks=ranks,
+                                       copies=copies, repeat=r)
+                            writer.writerow(row)
+                            f.flush()
+                            results.setdefault((name, label, mode),
+                                               []).append(row)
+                            print("%-24s %-10s np %s run %d: %.3f Mps/core "
+                                  "(wall %.1f s, cpu %.1f s)" % (
+                                      name, label, mode, r,
+                                      row["Mps_per_core"], row["wall_s"],
+                                      row["cpu_s"]), flush=True)
 
     def med(rows, key):
         return statistics.median(r[key] for r in rows)
 
     print("\nMedians over %d run(s); ns per point-step and core"
           % args.repeat)
-    head = "%-24s %-10s %2s %7s %6s %6s %9s %8s %8s %6s" % (
+    head = "%-24s %-10s %3s %7s %6s %6s %9s %8s %8s %6s" % (
         "scene", "label", "np", "points", "cells", "steps", "pt-steps",
         "Mps/core", "Mps/cpu", "B/pt")
     short = {"MPM step": "mpm", "non-local damage": "nonlocal",
@@ -362,7 +425,7 @@ def main():
         head += " %8s" % short[p]
     print(head)
     for (name, label, ranks), rows in results.items():
-        line = "%-24s %-10s %2d %7d %6d %6d %9.3g %8.3f %8.3f %6.0f" % (
+        line = "%-24s %-10s %3s %7d %6d %6d %9.3g %8.3f %8.3f %6.0f" % (
             name, label, ranks, rows[-1]["points"], rows[-1]["cells"],
             rows[-1]["steps"], rows[-1]["point_steps"],
             med(rows, "Mps_per_core"), med(rows, "Mps_per_cpu_s"),
@@ -372,12 +435,12 @@ def main():
         print(line)
 
     print("\nParts of the MPM step, ns per point-step and core (medians)")
-    head = "%-24s %-10s %2s" % ("scene", "label", "np")
+    head = "%-24s %-10s %3s" % ("scene", "label", "np")
     for p in PARTS:
         head += " %12s" % p[:12]
     print(head)
     for (name, label, ranks), rows in results.items():
-        line = "%-24s %-10s %2d" % (name, label, ranks)
+        line = "%-24s %-10s %3s" % (name, label, ranks)
         for p in PARTS:
             line += " %12.0f" % med(rows, "ns " + p)
         print(line)
@@ -386,14 +449,20 @@ def main():
         print("\nParallel efficiency against %d rank(s): Mps/core(np) / "
               "Mps/core(%d) (medians, wall time)" % (rank_list[0],
                                                     rank_list[0]))
-        for (name, label, ranks), rows in results.items():
-            if ranks == rank_list[0]:
+        first = "%d" % rank_list[0]
+        for (name, label, mode), rows in results.items():
+            if mode == first:
                 continue
-            base = results.get((name, label, rank_list[0]))
+            base = results.get((name, label, first))
             if base:
-                print("%-24s %-10s np %d: %.2f" % (
-                    name, label, ranks,
+                print("%-24s %-10s np %s: %.2f" % (
+                    name, label, mode,
                     med(rows, "Mps_per_core") / med(base, "Mps_per_core")))
+        if args.copies:
+            print("(np Nx1: N independent one-rank runs side by side, each "
+                  "against one alone: the share of one core's speed that "
+                  "the machine's shared memory and caches leave, a ceiling "
+                  "for the efficiency of N ranks)")
     print("CSV: %s" % args.csv)
 
 

@@ -133,6 +133,11 @@ namespace scarp
       particles.prepare_for_coarsening_and_refinement();
       grid.triangulation().repartition();
       particles.unpack_after_coarsening_and_refinement();
+      // The unpack leaves the pool's slots out of the order of the cells
+      // (on 2 ranks nearly every point: test refinement_pool_growth), and
+      // the transfers, walking cell by cell, then wait on memory; the full
+      // sort puts the pool in that order (PropertyPool::sort_memory_slots).
+      particles.sort_particles_into_subdomains_and_cells();
       grid.setup_dofs();
     }
 
