@@ -24,7 +24,7 @@
 
 #include <scarp/particles/pool_growth.h>
 
-#include "../common/scene_runner.h"
+#include "../core/core_tools.h"
 
 #include <vector>
 
@@ -126,50 +126,13 @@ namespace
     // A column filling a box of 10 x 40 cells with one empty layer around
     // it (the empty cells weigh less than the full ones, so the balance
     // moves the cut), 4 points per cell.
-    const std::string text = R"(set Dimension = 2
-set Materials = elastic
-set Bodies    = column
-set Stages    = load
-set Output directory = pool_order_out
-subsection Mesh
-  set Lower corner = 0, 0
-  set Upper corner = 1.2, 4.2
-  set Cell size    = 0.1
-  subsection Boundary conditions
-    set Left   = free
-    set Right  = free
-    set Bottom = fixed
-    set Top    = free
-  end
-end
-subsection Material elastic
-  set Model   = linear elastic
-  set Density = 1000
-  subsection Elasticity
-    set Young's modulus = 1e6
-    set Poisson's ratio = 0.3
-  end
-end
-subsection Body column
-  set Material = elastic
-  set Particles per cell = 2
-  set Shape = box
-  set Box corners = 0.1, 0, 1.1, 4
-end
-subsection Physics
-  set Gravity = 0, -9.81
-end
-subsection Stage load
-  set End time   = 0.01
-  set Plasticity = false
-  set Damage     = false
-end
-subsection Output
-  set Interval = 0
-end
-)";
-    auto              sim  = make_scene<2>(text, MPI_COMM_WORLD, "pool_order");
-    unsigned int      slot = 0, out_of_order = 0;
+    const std::string text =
+      scene_header(2) + material_text("linear elastic", 1e6, 0.3, 1000) +
+      mesh_text({0, 0}, {1.2, 4.2}, 0.1, {"free", "free", "fixed", "free"}) +
+      body_text("body", box_shape({0.1, 0, 1.1, 4}), 2, "0; 0") +
+      run_text({0, -9.81}, 0.5, 0.01);
+    auto         sim  = make_scene<2>(text, MPI_COMM_WORLD, "pool_order");
+    unsigned int slot = 0, out_of_order = 0;
     for (const auto &particle : sim->particle_handler_for_initialisation())
       out_of_order += particle.get_local_index() != slot++;
     const unsigned int total =
