@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs the dependencies, builds, runs the Joss Bay cliff
 # collapse (prm/joss_bay.prm: the converged setting, to 0.5 s after the
-# failure onset, 3 to 14 min on 2 cores by machine, 17 min on a loaded
-# one) on all cores and draws its pictures.
+# failure onset, 3 to 14 min on 2 cores by machine, 17 min sharing them
+# with another run) on all cores and draws its pictures.
 # Usage: tools/run_main_job.sh [scene.prm]   (default prm/joss_bay.prm)
 set -euo pipefail
 cd "$(dirname "$0")/.."
