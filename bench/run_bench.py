@@ -64,7 +64,6 @@ import shutil
 import statistics
 import subprocess
 import sys
-import time
 
 PHASES = ["MPM step", "non-local damage", "sort particles", "refinement",
           "output", "setup"]
@@ -424,9 +423,9 @@ def main():
     for p in PHASES:
         head += " %8s" % short[p]
     print(head)
-    for (name, label, ranks), rows in results.items():
+    for (name, label, mode), rows in results.items():
         line = "%-24s %-10s %3s %7d %6d %6d %9.3g %8.3f %8.3f %6.0f" % (
-            name, label, ranks, rows[-1]["points"], rows[-1]["cells"],
+            name, label, mode, rows[-1]["points"], rows[-1]["cells"],
             rows[-1]["steps"], rows[-1]["point_steps"],
             med(rows, "Mps_per_core"), med(rows, "Mps_per_cpu_s"),
             med(rows, "bytes_per_point"))
@@ -439,8 +438,8 @@ def main():
     for p in PARTS:
         head += " %12s" % p[:12]
     print(head)
-    for (name, label, ranks), rows in results.items():
-        line = "%-24s %-10s %3s" % (name, label, ranks)
+    for (name, label, mode), rows in results.items():
+        line = "%-24s %-10s %3s" % (name, label, mode)
         for p in PARTS:
             line += " %12.0f" % med(rows, "ns " + p)
         print(line)
