@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# tools/debris_bulking.py and tools/plot_snapshots.py (the table and figure
+# tools/debris_bulking.py, tools/plot_snapshots.py and
+# tools/debris_separation.py (the table and figure
 # tools of doc/joss_bay.md) on hand-made particle outputs of known values
 # (tests/cliff/synthetic_particles.py writes them as scarp does, two pieces
 # per output as from two ranks). The expected numbers are exact sums of the
@@ -26,6 +27,19 @@
 #   failure onset is refused. With --bands 0.5 the energy at 2.9 s splits
 #   into 25 J at x = 0 (99.7 %, undamaged) and 0.08 J at x = 1 (0.3 %, all
 #   of it on the fully damaged point).
+# debris_separation.py: finest cell h = 1, onset t = 2 s, one output at
+#   t = 3 s. Points (x; damage; speed; mass; J): A (0; 1; 0; 1; 1),
+#   B (0.5; 1; 0; 1; 2), C (5; 1; 1 m/s; 2; 4, from (1, 2)), D (6.5; 0.5;
+#   0.2; 1; 1), E (10; 1; 0.6; 1; 1, from (3, 4)). Fully damaged A B C E,
+#   moving C E; nearest other point over h: 0.5, 0.5, 1.5 (D), 3.5 (D,
+#   beyond the buckets' reach of 2 h). J median 1.5, 90 % 3.4 (numpy's
+#   linear percentile of 1 1 2 4); nn/h median 1.0, 90 % 2.9; loose (beyond one
+#   cell) C E: 50 % of the fully damaged, 100 % of the moving; kinetic
+#   energy 1 + 0.02 + 0.18 = 1.2 J, 1.18 of it on C E (98.3 %). Loose
+#   moving C E: from x 1, 3 (10/50/90 %: 1.2/2.0/2.8), y 2, 4
+#   (2.2/3.0/3.8), at x 5, 10 (5.5/7.5/9.5), y 0; J 4, 1 (median 2.5,
+#   90 % 3.7); speed 1, 0.6 (0.8, 0.96). No output 3 s after the onset; a
+#   run without a finest cell refused.
 # Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
 set -euo pipefail
 src="$2"; run="$3"
@@ -69,6 +83,18 @@ summaries = {
     "c": {"stages": {"gravity": gravity, "collapse": {"start_time": 0.5}},
           "cliff": {}}}
 for name, s in summaries.items():
+    with open(f"{name}/summary.json", "w") as f:
+        json.dump(s, f)
+
+sep = [[point(0, 0, 0, 0, 1.0, d=1), point(0.5, 0, 0.5, 0, 1.0, (2, 0, 0, 1), d=1),
+        point(5, 0, 1, 2, 1.0, (4, 0, 0, 1), vel=(1, 0), mass=2, d=1)],
+       [point(6.5, 0, 6.5, 0, 1.0, vel=(0, 0.2), d=0.5),
+        point(10, 0, 3, 4, 1.0, vel=(0, 0.6), d=1)]]
+for name in ("sep", "sep_no_cell"):
+    write_run(name, [(3.0, sep)])
+    s = dict(summaries["a"])
+    if name == "sep":
+        s["refinement"] = {"finest_cell": 1.0}
     with open(f"{name}/summary.json", "w") as f:
         json.dump(s, f)
 PY
@@ -118,4 +144,14 @@ if /usr/bin/python3 "$src/tools/plot_snapshots.py" --output c.png "C=c@1" > c.ou
 fi
 grep -q "no failure onset" c.out || { cat c.out; fail "message"; }
 [ ! -e c.png ] || fail "c.png written for a refused run"
+
+out=$(/usr/bin/python3 "$src/tools/debris_separation.py" --after-onset 1,3 "S=sep")
+echo "$out"
+expect "$out" "| S | 1.0 s (1.00 s) | 1 | 4 (2) | 1.50, 3.40 | 1.00, 2.90 | 50.0 %, 100.0 % | 98.3 % (1.2 J) |" "separation table"
+expect "$out" "| S | 3.0 s | no output within 0.3 s |" "no output 3 s after the onset"
+expect "$out" "| S | 1.0 s | 2 | 1.2/2.0/2.8; 2.2/3.0/3.8 | 5.5/7.5/9.5; 0.0/0.0/0.0 | 2.5/3.7 | 0.8/1.0 |" "loose moving points"
+if /usr/bin/python3 "$src/tools/debris_separation.py" "S=sep_no_cell" > nc.out 2>&1; then
+  fail "a run without a finest cell was accepted"
+fi
+grep -q "no refinement/finest_cell" nc.out || { cat nc.out; fail "finest cell message"; }
 echo "ok"
