@@ -101,6 +101,20 @@ namespace scarp
                         Patterns::Integer(1),
                         "Steps between refinement passes.");
       prm.declare_entry(
+        "Split stretched points",
+        "false",
+        Patterns::Bool(),
+        "At every refinement pass, also split each point whose current "
+        "volume V0 det F has grown past 2^(dim/2) times its cell's share "
+        "(h/n)^dim (twice in 2D), n its body's points per cell direction, "
+        "into 2^dim children spread over that volume, whether or not a "
+        "cell is refined. Keeps a "
+        "dilating layer (fully damaged chalk without tensile stiffness) at "
+        "the points per cell of the set-up instead of one point standing "
+        "for several cells. Not in the paper nor its authors' code (they "
+        "delete such points: <Remove points stretched beyond> of the "
+        "material). Needs <Adaptive refinement>.");
+      prm.declare_entry(
         "Set-up passes",
         "0",
         Patterns::Integer(0, 6),
@@ -154,6 +168,7 @@ namespace scarp
       refinement_driver_fraction = prm.get_double("Driver fraction");
       refinement_buffer          = prm.get_double("Buffer");
       refinement_interval        = prm.get_integer("Interval");
+      split_stretched_points     = prm.get_bool("Split stretched points");
       setup_passes               = prm.get_integer("Set-up passes");
       initial_levels             = prm.get_integer("Initial levels");
       {
@@ -167,6 +182,10 @@ namespace scarp
           }
         initial_region = BoundingBox<dim>(std::make_pair(a, b));
       }
+      if (split_stretched_points && !adaptive_refinement)
+        throw ScarpError("Mesh/Refinement: <Split stretched points> acts at "
+                         "the refinement passes, and there are none without "
+                         "<Adaptive refinement> = true.");
       if (adaptive_refinement)
         {
           if (initial_levels > max_refinement_level)

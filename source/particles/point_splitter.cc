@@ -18,7 +18,8 @@ namespace scarp
       const PropertyLayout<dim>       &layout,
       const std::vector<unsigned int> &points_per_direction,
       const BoundingBox<dim>          &box,
-      const MPI_Comm                   communicator)
+      const MPI_Comm                   communicator,
+      const bool                       current_volume)
     {
       constexpr unsigned int n_children = 1u << dim;
       struct Child
@@ -31,10 +32,17 @@ namespace scarp
       types::particle_index max_id = 0;
       for (auto &particle : particles)
         {
-          max_id                  = std::max(max_id, particle.get_id());
-          double *const      p    = particle.get_properties().data();
-          const double       V0   = p[layout.reference_volume];
-          const double       side = dim == 2 ? std::sqrt(V0) : std::cbrt(V0);
+          max_id           = std::max(max_id, particle.get_id());
+          double *const p  = particle.get_properties().data();
+          const double  V0 = p[layout.reference_volume];
+          // A compressed point still splits by V0 in a refined cell.
+          const double V =
+            current_volume
+              ? std::max(V0,
+                         V0 * std::abs(determinant(layout.get_matrix(
+                                p, layout.deformation_gradient))))
+              : V0;
+          const double       side = dim == 2 ? std::sqrt(V) : std::cbrt(V);
           const auto         cell = particle.get_surrounding_cell();
           const double       h    = cell->vertex(1)[0] - cell->vertex(0)[0];
           const unsigned int n =

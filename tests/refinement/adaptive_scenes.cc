@@ -10,7 +10,8 @@
 //   the mesh and the physics equal the serial run, and the refinement's
 //   own repartition equals a second one by the split points;
 // - bad_input: impossible refinement settings are refused by name (also
-//   Set-up passes without adaptive refinement or without a loading stage).
+//   Set-up passes without adaptive refinement or without a loading stage,
+//   and Split stretched points without adaptive refinement).
 #include <scarp/base/exceptions.h>
 
 #include "../chalk/chalk_tools.h"
@@ -300,7 +301,11 @@ namespace
        {"Set-up passes", "first stage", "run"}},
       {"    set Set-up passes = 1\n    set Adaptive refinement = false\n",
        "set-up passes without adaptive refinement",
-       {"Set-up passes", "Adaptive refinement"}}};
+       {"Set-up passes", "Adaptive refinement"}},
+      {"    set Split stretched points = true\n    set Adaptive refinement = "
+       "false\n",
+       "splitting stretched points without adaptive refinement",
+       {"Split stretched points", "Adaptive refinement"}}};
     for (const auto &c : cases)
       {
         const std::string message = error_of(with(c.entries));

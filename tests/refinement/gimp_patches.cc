@@ -16,6 +16,13 @@
 // - split: refining cells splits their points into 2^dim children with mass,
 //   momentum, angular momentum and kinetic energy unchanged to 1e-12, ids
 //   unique over all ranks.
+// - split_stretched: splitting by the current volume V0 det F (Mesh/
+//   Refinement/Split stretched points) splits a point dilated 4 times into
+//   2^dim children at +-side/4 of it (side = (4 V0)^(1/dim)), reference
+//   positions at F^-1 times that, each with V0 / 2^dim and the parent's
+//   velocity, and leaves alone a point at rest size, a compressed one and
+//   one sheared without a change of volume; the reference-volume rule
+//   splits none of them.
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -498,6 +505,127 @@ namespace
     check(Utilities::MPI::min(lattice ? 1 : 0, MPI_COMM_WORLD) == 1,
           "each refined cell holds 2^dim children (the lattice is kept)");
   }
+
+  template <int dim>
+  void
+  split_stretched()
+  {
+    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
+    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
+    MappingCartesian<dim>                 mapping;
+    scarp::particles::PropertyLayout<dim> layout;
+    layout.build(/*apic=*/false, {});
+    Particles::ParticleHandler<dim> particles(tria,
+                                              mapping,
+                                              layout.n_properties());
+    // Four points of 2 per cell direction (V0 = 0.5^dim) at cell centres:
+    // dilated (F = diag(4, 1, 1)), at rest size (F = I), compressed
+    // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1).
+    const double       V0     = std::pow(0.5, dim);
+    const unsigned int n      = 4;
+    const auto         centre = [](const double a, const double b) {
+      Point<dim> x;
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] = d == 0 ? a : b;
+      return x;
+    };
+    const Point<dim> where[n] = {centre(2.5, 2.5),
+                                 centre(5.5, 5.5),
+                                 centre(2.5, 5.5),
+                                 centre(5.5, 2.5)};
+    const double     F00[n]   = {4., 1., 0.25, 1.};
+    const double     F01[n]   = {0., 0., 0., 3.};
+    for (unsigned int k = 0; k < n; ++k)
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->point_inside(where[k]))
+          {
+            std::vector<double> p(layout.n_properties(), 0.);
+            p[layout.mass]             = 10. * (k + 1);
+            p[layout.reference_volume] = V0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                p[layout.velocity + d]                       = 1. + d + k;
+                p[layout.reference_position + d]             = where[k][d];
+                p[layout.deformation_gradient + d * dim + d] = 1.;
+              }
+            p[layout.deformation_gradient]     = F00[k];
+            p[layout.deformation_gradient + 1] = F01[k];
+            Point<dim> xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              xi[d] = 0.5;
+            particles.insert_particle(where[k], xi, k, cell, p);
+          }
+    particles.update_cached_numbers();
+    Point<dim> upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      upper[d] = 8.;
+    const BoundingBox<dim> box(std::make_pair(Point<dim>(), upper));
+    const auto by_reference = scarp::particles::PointSplitter<dim>::split(
+      particles, layout, {2}, box, MPI_COMM_WORLD, false);
+    const auto by_current = scarp::particles::PointSplitter<dim>::split(
+      particles, layout, {2}, box, MPI_COMM_WORLD, true);
+    const auto again = scarp::particles::PointSplitter<dim>::split(
+      particles, layout, {2}, box, MPI_COMM_WORLD, true);
+    particles.sort_particles_into_subdomains_and_cells();
+    out() << "  " << dim << "D: split by V0 " << by_reference
+          << ", by V0 det F " << by_current << ", again " << again << ", "
+          << particles.n_global_particles() << " points" << std::endl;
+    check(by_reference == 0, "the reference-volume rule splits none");
+    check(by_current == 1 && again == 0, "only the dilated point splits, once");
+    check(particles.n_global_particles() == n - 1 + (1u << dim),
+          "2^dim children");
+    // The children of point 0 (mass 10): where they are and came from.
+    const double side   = std::pow(4. * V0, 1. / dim);
+    unsigned int found  = 0;
+    double       worst  = 0;
+    double       mass_0 = 0;
+    bool         others = true;
+    for (const auto &particle : particles)
+      {
+        const double *p = particle.get_properties().data();
+        const auto    x = particle.get_location();
+        if (x.distance(where[0]) > 1.)
+          {
+            // The others unchanged: mass 10 (k + 1), V0, at their centre.
+            bool unchanged = false;
+            for (unsigned int k = 1; k < n; ++k)
+              unchanged = unchanged || (x.distance(where[k]) == 0. &&
+                                        p[layout.mass] == 10. * (k + 1) &&
+                                        p[layout.reference_volume] == V0);
+            others = others && unchanged;
+            continue;
+          }
+        ++found;
+        mass_0 += p[layout.mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            // At +-side/4 in every direction; the reference offset is
+            // F^-1 times it: a quarter along x.
+            const double offset = x[d] - where[0][d];
+            worst = std::max(worst, std::abs(std::abs(offset) - side / 4));
+            const double dX = p[layout.reference_position + d] - where[0][d];
+            worst =
+              std::max(worst, std::abs(dX - (d == 0 ? offset / 4 : offset)));
+            worst = std::max(worst, std::abs(p[layout.velocity + d] - 1. - d));
+          }
+        worst = std::max(
+          worst, std::abs(p[layout.reference_volume] - V0 / (1u << dim)) / V0);
+        worst = std::max(worst, std::abs(p[layout.deformation_gradient] - 4.));
+      }
+    found  = Utilities::MPI::sum(found, MPI_COMM_WORLD);
+    mass_0 = Utilities::MPI::sum(mass_0, MPI_COMM_WORLD);
+    worst  = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    out() << "  children " << found << ", their mass " << mass_0
+          << ", worst deviation " << worst << std::endl;
+    check(found == (1u << dim), "2^dim children around the dilated point");
+    check(others, "the other points unchanged");
+    // Positions, reference positions and volumes are sums and quotients of
+    // numbers exact in binary but for the cube root of 3D: round-off.
+    check(worst < 1e-14,
+          "children at +-side/4, reference offsets F^-1 times that, V0 / "
+          "2^dim, the parent's velocity and F (to 1e-14)");
+    check(std::abs(mass_0 - 10.) < 1e-13, "the mass of the parent kept");
+  }
 } // namespace
 
 int
@@ -522,8 +650,13 @@ main(int argc, char **argv)
                        regular<3>(0);
                        regular<3>(1);
                      }},
-                    {"split", [] {
+                    {"split",
+                     [] {
                        split<2>();
                        split<3>();
+                     }},
+                    {"split_stretched", [] {
+                       split_stretched<2>();
+                       split_stretched<3>();
                      }}});
 }

@@ -133,6 +133,8 @@ namespace scarp
       double       refinement_driver_fraction = 0.5;
       /// In cut-off radii of the non-local average.
       double refinement_buffer = 1.;
+      /// Split points by their current volume at every pass too.
+      bool split_stretched_points = false;
       /// Runs of the first stage that refine the mesh and reseed the bodies
       /// before the run proper (0: none).
       unsigned int setup_passes = 0;

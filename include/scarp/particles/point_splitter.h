@@ -31,6 +31,11 @@ namespace scarp
      * kinetic energy is unchanged: the children move with the parent's
      * velocity. The first child keeps the parent's id, the others get new
      * ids, unique over all ranks.
+     *
+     * With @p current_volume the point's size is that of the larger of its
+     * current volume V0 det F and V0, and its domain that size: a point
+     * that dilated past twice its cell's share splits without a
+     * refinement, its children spread over the volume it takes now.
      */
     template <int dim>
     class PointSplitter
@@ -41,7 +46,8 @@ namespace scarp
       /// edge of its cell and n_b the points per cell direction of its body
       /// (@p points_per_direction, by body id). After a refinement this is
       /// every point of a refined cell; a point that drifted into a finer
-      /// cell is split at the next pass too. The rule reads only the point
+      /// cell is split at the next pass too. With @p current_volume the
+      /// side is max(V0, V0 |det F|)^(1/dim). The rule reads only the point
       /// and its cell, so it gives the same points on any partition.
       /// Returns the number of points split on all ranks (collective); the
       /// caller sorts the particles into cells afterwards.
@@ -50,7 +56,8 @@ namespace scarp
             const PropertyLayout<dim>       &layout,
             const std::vector<unsigned int> &points_per_direction,
             const BoundingBox<dim>          &box,
-            const MPI_Comm                   communicator);
+            const MPI_Comm                   communicator,
+            const bool                       current_volume = false);
     };
   } // namespace particles
 } // namespace scarp
