@@ -74,64 +74,54 @@ namespace scarp
       precursor_ids.clear();
       const double buffer =
         grid.refinement_buffer * (averager ? averager->cutoff_radius() : 0.);
-      std::vector<unsigned int> per_direction;
-      for (const auto &body : bodies)
-        per_direction.push_back(body.per_direction);
-      if (grid::RefinementMarker<dim>::mark(
-            tria, seeds, buffer, grid.max_refinement_level) == 0)
-        {
-          // No cell to refine: only the points stretched past their
-          // cell's share split, if asked (Split stretched points).
-          if (!grid.split_stretched_points)
-            return;
-          order_points();
-          const types::particle_index n_split =
-            particles::PointSplitter<dim>::split(particles,
-                                                 layout,
-                                                 per_direction,
-                                                 grid.domain(),
-                                                 communicator,
-                                                 true);
-          if (n_split == 0)
-            return;
-          loop.counters.points_split += n_split;
-          particles.sort_particles_into_subdomains_and_cells();
-          if (points_out_of_balance())
-            balance_load();
-          mpm->setup();
-          local_boxes.clear();
-          if (averager)
-            averager->invalidate_neighbour_lists();
-          return;
-        }
+      const bool refines =
+        grid::RefinementMarker<dim>::mark(tria,
+                                          seeds,
+                                          buffer,
+                                          grid.max_refinement_level) > 0;
+      // Without a cell to refine, only points stretched past their cell's
+      // share can split (Split stretched points).
+      if (!refines && !grid.split_stretched_points)
+        return;
       // The split and the transfer walk the points in the list's order
       // (the check above reads them cell by cell).
       order_points();
-      // Refinement repartitions the mesh as well, weighing each child of a
-      // refined cell as its parent (balance_load()'s weight): the points
-      // the child holds after the split, if they were spread evenly.
-      particles.prepare_for_coarsening_and_refinement();
-      tria.execute_coarsening_and_refinement();
-      particles.unpack_after_coarsening_and_refinement();
-      loop.counters.points_split +=
+      if (refines)
+        {
+          // Refinement repartitions the mesh as well, weighing each child
+          // of a refined cell as its parent (balance_load()'s weight): the
+          // points the child holds after the split, if they were spread
+          // evenly.
+          particles.prepare_for_coarsening_and_refinement();
+          tria.execute_coarsening_and_refinement();
+          particles.unpack_after_coarsening_and_refinement();
+        }
+      std::vector<unsigned int> per_direction;
+      for (const auto &body : bodies)
+        per_direction.push_back(body.per_direction);
+      const types::particle_index n_split =
         particles::PointSplitter<dim>::split(particles,
                                              layout,
                                              per_direction,
                                              grid.domain(),
                                              communicator,
                                              grid.split_stretched_points);
+      if (!refines && n_split == 0)
+        return;
+      loop.counters.points_split += n_split;
       particles.sort_particles_into_subdomains_and_cells();
       // A second repartition (and particle transfer) only where the split
       // points are spread so unevenly that the ranks are out of balance.
       if (points_out_of_balance())
         balance_load();
-      else
+      else if (refines)
         grid.setup_dofs();
       mpm->setup();
       local_boxes.clear();
       if (averager)
         averager->invalidate_neighbour_lists();
-      ++loop.counters.refinement_passes;
+      if (refines)
+        ++loop.counters.refinement_passes;
     }
 
 
