@@ -113,7 +113,8 @@ namespace scarp
         "the points per cell of the set-up instead of one point standing "
         "for several cells. Not in the paper nor its authors' code (they "
         "delete such points: <Remove points stretched beyond> of the "
-        "material). Needs <Adaptive refinement>.");
+        "material). Needs <Adaptive refinement>. Experimental: a Joss Bay "
+        "level-2 run with it stopped on an unstable step (doc/refinement.md).");
       prm.declare_entry(
         "Set-up passes",
         "0",
