@@ -107,14 +107,15 @@ namespace scarp
         "At every refinement pass, also split each point whose current "
         "volume V0 det F has grown past 2^(dim/2) times its cell's share "
         "(h/n)^dim (twice in 2D), n its body's points per cell direction, "
-        "into 2^dim children spread over that volume, whether or not a "
-        "cell is refined. Keeps a "
-        "dilating layer (fully damaged chalk without tensile stiffness) at "
-        "the points per cell of the set-up instead of one point standing "
-        "for several cells. Not in the paper nor its authors' code (they "
-        "delete such points: <Remove points stretched beyond> of the "
-        "material). Needs <Adaptive refinement>. Experimental: a Joss Bay "
-        "level-2 run with it stopped on an unstable step (doc/refinement.md).");
+        "into 2^dim children inside the parallelogram it has become (at F "
+        "times +-V0^(1/dim)/4), whether or not a cell is refined; only "
+        "while V0 is at least half the share, so at most once below it. "
+        "Keeps a dilating layer (fully damaged chalk without tensile "
+        "stiffness) at the points per cell of the set-up instead of one "
+        "point standing for several cells. Not in the paper nor its "
+        "authors' code (they delete such points: <Remove points stretched "
+        "beyond> of the material). Needs <Adaptive refinement>. "
+        "Experimental (doc/refinement.md).");
       prm.declare_entry(
         "Set-up passes",
         "0",

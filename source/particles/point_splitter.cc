@@ -50,17 +50,25 @@ namespace scarp
           // Between the lattice side h/n of the cell and twice it.
           if (!(side > std::sqrt(2.) * h / n))
             continue;
-          const Point<dim> x = particle.get_location();
-          // Half-widths of the domain, clipped to the mesh box.
-          double l[dim];
-          for (unsigned int d = 0; d < dim; ++d)
-            l[d] = std::max(0.,
-                            std::min({0.5 * side,
-                                      x[d] - box.lower_bound(d),
-                                      box.upper_bound(d) - x[d]}));
-          const Tensor<2, dim> F_inv =
-            invert(layout.get_matrix(p, layout.deformation_gradient));
+          // By the current volume a point splits at most once below its
+          // cell's share: children of a point dilated a thousandfold would
+          // split again at every check, ever lighter (the cascade that
+          // made a level-2 run unstable).
+          if (current_volume && !(V0 >= 0.5 * std::pow(h / n, dim)))
+            continue;
+          const Point<dim>     x = particle.get_location();
+          const Tensor<2, dim> F =
+            layout.get_matrix(p, layout.deformation_gradient);
+          const Tensor<2, dim> F_inv = invert(F);
           const Point<dim> X(layout.get_vector(p, layout.reference_position));
+          // The children's offsets: by the reference volume at the centres
+          // of the 2^dim sub-boxes of the axis-aligned box of side
+          // V0^(1/dim) (GIMP's domain); by the current volume at F times
+          // those of the reference box, so that they stay inside the
+          // parallelogram the point has become. Both are kept inside the
+          // mesh box.
+          const double a =
+            current_volume ? (dim == 2 ? std::sqrt(V0) : std::cbrt(V0)) : side;
           p[layout.mass] /= n_children;
           p[layout.reference_volume] /= n_children;
           const std::vector<double> parent(p, p + layout.n_properties());
@@ -68,7 +76,19 @@ namespace scarp
             {
               Tensor<1, dim> offset;
               for (unsigned int d = 0; d < dim; ++d)
-                offset[d] = ((c >> d) & 1u ? 0.5 : -0.5) * l[d];
+                offset[d] = ((c >> d) & 1u ? 0.25 : -0.25) * a;
+              if (current_volume)
+                offset = F * offset;
+              // At most half-way to the nearer face of the box, the same
+              // on both sides (the children keep the parent's centre).
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const double reach =
+                    0.5 * std::max(0.,
+                                   std::min(x[d] - box.lower_bound(d),
+                                            box.upper_bound(d) - x[d]));
+                  offset[d] = std::max(-reach, std::min(offset[d], reach));
+                }
               const Tensor<1, dim> dX = F_inv * offset;
               if (c == 0)
                 {

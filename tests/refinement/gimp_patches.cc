@@ -17,12 +17,14 @@
 //   momentum, angular momentum and kinetic energy unchanged to 1e-12, ids
 //   unique over all ranks.
 // - split_stretched: splitting by the current volume V0 det F (Mesh/
-//   Refinement/Split stretched points) splits a point dilated 4 times into
-//   2^dim children at +-side/4 of it (side = (4 V0)^(1/dim)), reference
-//   positions at F^-1 times that, each with V0 / 2^dim and the parent's
-//   velocity, and leaves alone a point at rest size, a compressed one and
-//   one sheared without a change of volume; the reference-volume rule
-//   splits none of them.
+//   Refinement/Split stretched points) splits a point dilated 4 times and
+//   one dilated 64 times with shear into 2^dim children each, at F times
+//   +-a/4 of the parent (a = V0^(1/dim)), reference positions at +-a/4,
+//   each with V0 / 2^dim and the parent's velocity and F; the children of
+//   the second, still too large, do not split again (a point splits by its
+//   current volume at most once below its cell's share). It leaves alone a
+//   point at rest size, a compressed one and one sheared without a change
+//   of volume; the reference-volume rule splits none of them.
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -518,11 +520,12 @@ namespace
     Particles::ParticleHandler<dim> particles(tria,
                                               mapping,
                                               layout.n_properties());
-    // Four points of 2 per cell direction (V0 = 0.5^dim) at cell centres:
-    // dilated (F = diag(4, 1, 1)), at rest size (F = I), compressed
-    // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1).
+    // Five points of 2 per cell direction (V0 = 0.5^dim): dilated
+    // (F = diag(4, 1, 1)), at rest size (F = I), compressed
+    // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1), and dilated 64
+    // times with shear (F = [8 2; 0 8], F_22 = 1).
     const double       V0     = std::pow(0.5, dim);
-    const unsigned int n      = 4;
+    const unsigned int n      = 5;
     const auto         centre = [](const double a, const double b) {
       Point<dim> x;
       for (unsigned int d = 0; d < dim; ++d)
@@ -532,9 +535,18 @@ namespace
     const Point<dim> where[n] = {centre(2.5, 2.5),
                                  centre(5.5, 5.5),
                                  centre(2.5, 5.5),
-                                 centre(5.5, 2.5)};
-    const double     F00[n]   = {4., 1., 0.25, 1.};
-    const double     F01[n]   = {0., 0., 0., 3.};
+                                 centre(5.5, 2.5),
+                                 centre(4.1, 4.1)};
+    const double     F00[n]   = {4., 1., 0.25, 1., 8.};
+    const double     F01[n]   = {0., 0., 0., 3., 2.};
+    const double     F11[n]   = {1., 1., 1., 1., 8.};
+    const auto       F_of     = [&](const unsigned int k) {
+      Tensor<2, dim> F = unit_symmetric_tensor<dim>();
+      F[0][0]          = F00[k];
+      F[0][1]          = F01[k];
+      F[1][1]          = F11[k];
+      return F;
+    };
     for (unsigned int k = 0; k < n; ++k)
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned() && cell->point_inside(where[k]))
@@ -544,15 +556,12 @@ namespace
             p[layout.reference_volume] = V0;
             for (unsigned int d = 0; d < dim; ++d)
               {
-                p[layout.velocity + d]                       = 1. + d + k;
-                p[layout.reference_position + d]             = where[k][d];
-                p[layout.deformation_gradient + d * dim + d] = 1.;
+                p[layout.velocity + d]           = 1. + d + k;
+                p[layout.reference_position + d] = where[k][d];
               }
-            p[layout.deformation_gradient]     = F00[k];
-            p[layout.deformation_gradient + 1] = F01[k];
-            Point<dim> xi;
-            for (unsigned int d = 0; d < dim; ++d)
-              xi[d] = 0.5;
+            layout.set_matrix(p.data(), layout.deformation_gradient, F_of(k));
+            const Point<dim> xi =
+              cell->real_to_unit_cell_affine_approximation(where[k]);
             particles.insert_particle(where[k], xi, k, cell, p);
           }
     particles.update_cached_numbers();
@@ -571,60 +580,83 @@ namespace
           << ", by V0 det F " << by_current << ", again " << again << ", "
           << particles.n_global_particles() << " points" << std::endl;
     check(by_reference == 0, "the reference-volume rule splits none");
-    check(by_current == 1 && again == 0, "only the dilated point splits, once");
-    check(particles.n_global_particles() == n - 1 + (1u << dim),
-          "2^dim children");
-    // The children of point 0 (mass 10): where they are and came from.
-    const double side   = std::pow(4. * V0, 1. / dim);
-    unsigned int found  = 0;
-    double       worst  = 0;
-    double       mass_0 = 0;
-    bool         others = true;
+    // The children of the point dilated 64 times are still 2^dim times too
+    // large, each of them, but V0 / 2^dim is below half the cell's share:
+    // they do not split again.
+    check(by_current == 2 && again == 0,
+          "only the two dilated points split, once");
+    check(particles.n_global_particles() == n - 2 + 2 * (1u << dim),
+          "2^dim children of each");
+    // The children of points 0 and 4 (mass 10 and 50), told apart by their
+    // mass: at F times +-a/4 (a = V0^(1/dim)) of the parent in every
+    // reference direction, inside the parallelogram it has become.
+    const double a        = std::pow(V0, 1. / dim);
+    unsigned int found[n] = {0, 0, 0, 0, 0};
+    double       worst    = 0;
+    double       mass[n]  = {0, 0, 0, 0, 0};
+    bool         others   = true;
     for (const auto &particle : particles)
       {
         const double *p = particle.get_properties().data();
         const auto    x = particle.get_location();
-        if (x.distance(where[0]) > 1.)
+        unsigned int  k = n;
+        for (const unsigned int parent : {0u, 4u})
+          if (std::abs(p[layout.mass] - 10. * (parent + 1) / (1u << dim)) <
+              1e-12)
+            k = parent;
+        if (k == n)
           {
             // The others unchanged: mass 10 (k + 1), V0, at their centre.
             bool unchanged = false;
-            for (unsigned int k = 1; k < n; ++k)
-              unchanged = unchanged || (x.distance(where[k]) == 0. &&
-                                        p[layout.mass] == 10. * (k + 1) &&
+            for (const unsigned int j : {1u, 2u, 3u})
+              unchanged = unchanged || (x.distance(where[j]) == 0. &&
+                                        p[layout.mass] == 10. * (j + 1) &&
                                         p[layout.reference_volume] == V0);
             others = others && unchanged;
             continue;
           }
-        ++found;
-        mass_0 += p[layout.mass];
+        ++found[k];
+        mass[k] += p[layout.mass];
+        Tensor<1, dim> dX;
+        for (unsigned int d = 0; d < dim; ++d)
+          dX[d] = p[layout.reference_position + d] - where[k][d];
+        // The reference offset is +-a/4 along every axis ...
+        for (unsigned int d = 0; d < dim; ++d)
+          worst = std::max(worst, std::abs(std::abs(dX[d]) - a / 4));
+        // ... and the offset F times it.
+        const Tensor<1, dim> dx = F_of(k) * dX;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            // At +-side/4 in every direction; the reference offset is
-            // F^-1 times it: a quarter along x.
-            const double offset = x[d] - where[0][d];
-            worst = std::max(worst, std::abs(std::abs(offset) - side / 4));
-            const double dX = p[layout.reference_position + d] - where[0][d];
+            worst = std::max(worst, std::abs(x[d] - where[k][d] - dx[d]));
             worst =
-              std::max(worst, std::abs(dX - (d == 0 ? offset / 4 : offset)));
-            worst = std::max(worst, std::abs(p[layout.velocity + d] - 1. - d));
+              std::max(worst, std::abs(p[layout.velocity + d] - 1. - d - k));
           }
         worst = std::max(
           worst, std::abs(p[layout.reference_volume] - V0 / (1u << dim)) / V0);
-        worst = std::max(worst, std::abs(p[layout.deformation_gradient] - 4.));
+        worst = std::max(
+          worst,
+          (layout.get_matrix(p, layout.deformation_gradient) - F_of(k)).norm());
       }
-    found  = Utilities::MPI::sum(found, MPI_COMM_WORLD);
-    mass_0 = Utilities::MPI::sum(mass_0, MPI_COMM_WORLD);
-    worst  = Utilities::MPI::max(worst, MPI_COMM_WORLD);
-    out() << "  children " << found << ", their mass " << mass_0
-          << ", worst deviation " << worst << std::endl;
-    check(found == (1u << dim), "2^dim children around the dilated point");
-    check(others, "the other points unchanged");
-    // Positions, reference positions and volumes are sums and quotients of
-    // numbers exact in binary but for the cube root of 3D: round-off.
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        found[k] = Utilities::MPI::sum(found[k], MPI_COMM_WORLD);
+        mass[k]  = Utilities::MPI::sum(mass[k], MPI_COMM_WORLD);
+      }
+    worst = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    out() << "  children " << found[0] << " and " << found[4] << ", their mass "
+          << mass[0] << " and " << mass[4] << ", worst deviation " << worst
+          << std::endl;
+    check(found[0] == (1u << dim) && found[4] == (1u << dim),
+          "2^dim children around each dilated point");
+    check(Utilities::MPI::min(others ? 1 : 0, MPI_COMM_WORLD) == 1,
+          "the other points unchanged");
+    // Offsets are products of numbers exact in binary (a = 0.5) and the
+    // parents' positions 2.5 and 4.1: round-off of positions near 8.
     check(worst < 1e-14,
-          "children at +-side/4, reference offsets F^-1 times that, V0 / "
-          "2^dim, the parent's velocity and F (to 1e-14)");
-    check(std::abs(mass_0 - 10.) < 1e-13, "the mass of the parent kept");
+          "children at F times +-a/4 of the parent, reference offsets +-a/4, "
+          "V0 / 2^dim, the parent's velocity and F (to 1e-14)");
+    check(std::abs(mass[0] - 10.) < 1e-13 && std::abs(mass[4] - 50.) < 1e-13,
+          "the mass of each parent kept");
   }
 } // namespace
 

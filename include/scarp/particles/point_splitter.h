@@ -33,9 +33,13 @@ namespace scarp
      * ids, unique over all ranks.
      *
      * With @p current_volume the point's size is that of the larger of its
-     * current volume V0 det F and V0, and its domain that size: a point
-     * that dilated past twice its cell's share splits without a
-     * refinement, its children spread over the volume it takes now.
+     * current volume V0 det F and V0: a point that dilated past twice its
+     * cell's share splits without a refinement. Its children sit at F times
+     * the offsets of the sub-boxes of its reference box, inside the
+     * parallelogram it has become (reference offsets +-V0^(1/dim)/4), and a
+     * point splits this way only while V0 is at least half its cell's
+     * share, so at most once below it: children keep F, and those of a
+     * point dilated a thousandfold would otherwise split at every pass.
      */
     template <int dim>
     class PointSplitter
@@ -47,7 +51,8 @@ namespace scarp
       /// (@p points_per_direction, by body id). After a refinement this is
       /// every point of a refined cell; a point that drifted into a finer
       /// cell is split at the next pass too. With @p current_volume the
-      /// side is max(V0, V0 |det F|)^(1/dim). The rule reads only the point
+      /// side is max(V0, V0 |det F|)^(1/dim), and points with V0 below half
+      /// of (h_K / n_b)^dim are left alone. The rule reads only the point
       /// and its cell, so it gives the same points on any partition.
       /// Returns the number of points split on all ranks (collective); the
       /// caller sorts the particles into cells afterwards.
