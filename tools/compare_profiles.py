@@ -48,6 +48,8 @@ QUANTITIES = [
     ("failed_area_m2", "failed area [m^2]"),
     ("failed_reference_area_m2", "failed area before it moved [m^2]"),
     ("scarp_retreat_m", "scarp retreat [m]"),
+    ("failed_mass_centroid_x_m", "failed mass centroid x [m]"),
+    ("mass_run_out_m", "run-out of 99 % of the failed mass [m]"),
     ("failure_onset_s", "failure onset [s]"),
 ]
 
@@ -58,6 +60,9 @@ TOLERANCES = {
     "debris_angle_deg": (1.5, "abs"),
     "run_out_m": (0.5, "abs"),
     "scarp_retreat_m": (0.5, "abs"),
+    # The study's 0.5 m for lengths.
+    "failed_mass_centroid_x_m": (0.5, "abs"),
+    "mass_run_out_m": (0.5, "abs"),
     "failure_onset_s": (0.10, "rel"),
 }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 namespace scarp
 {
@@ -398,12 +399,17 @@ namespace scarp
       const double threshold_2 =
         parameters.displacement_threshold * parameters.displacement_threshold;
       const double band_bottom = cliff.top_level() - top_band();
+      // (x, reference volume) of the failed particles, for the mass measures.
+      std::vector<std::pair<double, double>> failed_mass;
+      double                                 moment = 0.;
       for (const Particle &p : particles)
         if ((p.position - p.initial_position).norm_square() > threshold_2)
           {
             r.failed_area += p.volume;
             r.failed_reference_area += p.reference_volume;
             ++r.n_failed_particles;
+            failed_mass.emplace_back(p.position[0], p.reference_volume);
+            moment += p.position[0] * p.reference_volume;
             if (p.initial_position[1] >= band_bottom)
               {
                 r.scarp_position = r.has_scarp ? std::min(r.scarp_position,
@@ -414,6 +420,29 @@ namespace scarp
           }
       if (r.has_scarp)
         r.scarp_retreat = cliff.crest()[0] - r.scarp_position;
+
+      if (r.failed_reference_area > 0.)
+        {
+          r.failed_mass_centroid = moment / r.failed_reference_area;
+          std::sort(failed_mass.begin(), failed_mass.end());
+          // The relative slack keeps a fraction that the sum reaches exactly
+          // from being missed by round-off.
+          const auto quantile = [&](const double fraction) {
+            const double target =
+              fraction * r.failed_reference_area * (1. - 1e-12);
+            double held = 0.;
+            for (const auto &[x, v] : failed_mass)
+              {
+                held += v;
+                if (held >= target)
+                  return x;
+              }
+            return failed_mass.back().first;
+          };
+          r.failed_mass_x95 = quantile(0.95);
+          r.failed_mass_x99 = quantile(0.99);
+          r.mass_run_out    = r.failed_mass_x99 - r.initial_toe;
+        }
       return r;
     }
 
@@ -444,6 +473,10 @@ namespace scarp
               << "# failed_area = " << r.failed_area << '\n'
               << "# failed_reference_area = " << r.failed_reference_area << '\n'
               << "# n_failed_particles = " << r.n_failed_particles << '\n'
+              << "# failed_mass_centroid = " << r.failed_mass_centroid << '\n'
+              << "# failed_mass_x95 = " << r.failed_mass_x95 << '\n'
+              << "# failed_mass_x99 = " << r.failed_mass_x99 << '\n'
+              << "# mass_run_out = " << r.mass_run_out << '\n'
               << "# has_scarp = " << r.has_scarp << '\n'
               << "# scarp_position = " << r.scarp_position << '\n'
               << "# scarp_retreat = " << r.scarp_retreat << '\n';
@@ -463,19 +496,60 @@ namespace scarp
                                          const double       max_speed,
                                          const Result      &r)
     {
-      const bool new_file = !std::filesystem::exists(filename) ||
-                            std::filesystem::file_size(filename) == 0;
+      const std::vector<std::pair<std::string, double>> columns = {
+        {"time", time},
+        {"kinetic_energy", kinetic_energy},
+        {"max_speed", max_speed},
+        {"debris_angle", r.debris_angle},
+        {"run_out", r.run_out},
+        {"debris_toe", r.debris_toe},
+        {"failed_area", r.failed_area},
+        {"failed_reference_area", r.failed_reference_area},
+        {"n_failed_particles", r.n_failed_particles},
+        {"scarp_position", r.scarp_position},
+        {"scarp_retreat", r.scarp_retreat},
+        {"failed_mass_centroid", r.failed_mass_centroid},
+        {"failed_mass_x95", r.failed_mass_x95},
+        {"failed_mass_x99", r.failed_mass_x99},
+        {"mass_run_out", r.mass_run_out}};
+
+      // A run continued from a checkpoint may append to a history that an
+      // earlier version began: the row follows the header the file has (a
+      // column unknown here gets nan), so the file stays one table.
+      std::vector<std::string> header;
+      if (std::filesystem::exists(filename) &&
+          std::filesystem::file_size(filename) > 0)
+        {
+          std::ifstream in(filename);
+          std::string   line, name;
+          std::getline(in, line);
+          std::istringstream names(line);
+          while (std::getline(names, name, ','))
+            header.push_back(name);
+        }
+      const bool new_file = header.empty();
+
       std::ofstream out(filename, std::ios::app);
       AssertThrow(out, ExcMessage("Cannot open " + filename + " to write."));
+      out << std::setprecision(10);
       if (new_file)
-        out << "time,kinetic_energy,max_speed,debris_angle,run_out,"
-               "debris_toe,failed_area,failed_reference_area,"
-               "n_failed_particles,scarp_position,scarp_retreat\n";
-      out << std::setprecision(10) << time << ',' << kinetic_energy << ','
-          << max_speed << ',' << r.debris_angle << ',' << r.run_out << ','
-          << r.debris_toe << ',' << r.failed_area << ','
-          << r.failed_reference_area << ',' << r.n_failed_particles << ','
-          << r.scarp_position << ',' << r.scarp_retreat << '\n';
+        for (unsigned int i = 0; i < columns.size(); ++i)
+          {
+            header.push_back(columns[i].first);
+            out << columns[i].first << (i + 1 < columns.size() ? ',' : '\n');
+          }
+      for (unsigned int i = 0; i < header.size(); ++i)
+        {
+          const auto column =
+            std::find_if(columns.begin(), columns.end(), [&](const auto &c) {
+              return c.first == header[i];
+            });
+          if (column == columns.end())
+            out << "nan";
+          else
+            out << column->second;
+          out << (i + 1 < header.size() ? ',' : '\n');
+        }
       AssertThrow(out, ExcMessage("Writing " + filename + " failed."));
     }
 

@@ -97,6 +97,10 @@ namespace scarp
       cliff_summary.add("failed_reference_area_m2", r.failed_reference_area);
       cliff_summary.add("scarp_position_x_m", r.scarp_position);
       cliff_summary.add("scarp_retreat_m", r.scarp_retreat);
+      cliff_summary.add("failed_mass_centroid_x_m", r.failed_mass_centroid);
+      cliff_summary.add("failed_mass_x95_m", r.failed_mass_x95);
+      cliff_summary.add("failed_mass_x99_m", r.failed_mass_x99);
+      cliff_summary.add("mass_run_out_m", r.mass_run_out);
       cliff_summary.add("failure_onset_s", onset);
       cliff_summary.add("max_damage", last_report.max_damage);
       cliff_summary.add("dissipated_energy_J",
@@ -114,6 +118,11 @@ namespace scarp
         << "max damage " << last_report.max_damage << ", dissipated "
         << last_report.plastic_dissipation + last_report.damage_dissipation
         << " J/m";
+      if (r.failed_reference_area > 0.)
+        s << "\nCliff: failed mass centroid at x = " << r.failed_mass_centroid
+          << " m, 95 and 99 % of it landward of x = " << r.failed_mass_x95
+          << " and " << r.failed_mass_x99 << " m (mass run-out "
+          << r.mass_run_out << " m)";
       std::cout << s.str() << std::endl;
     }
 

@@ -11,10 +11,11 @@ src="$2"; run="$3"
 rm -rf "$run"; mkdir -p "$run"; cd "$run"
 fails=0
 
-level() { # dir angle run_out area retreat onset [reference_area]
+level() { # dir angle run_out area retreat onset [reference_area [centroid mass_run_out]]
   mkdir -p "$1"
   local reference=""
   [ $# -ge 7 ] && reference=", \"failed_reference_area_m2\": $7"
+  [ $# -ge 9 ] && reference="$reference, \"failed_mass_centroid_x_m\": $8, \"mass_run_out_m\": $9"
   cat > "$1/summary.json" <<JSON
 {"cliff": {"debris_angle_deg": $2, "run_out_m": $3, "failed_area_m2": $4,
            "scarp_retreat_m": $5, "failure_onset_s": $6$reference}}
@@ -101,5 +102,18 @@ grep -q "| failed area before it moved \[m^2\] | | | | | not in every run |" old
 grep -q "all quantities converged: True" old.out \
   && echo "  ok:   old: all quantities converged: True" \
   || { echo "  FAIL: old: expected all converged"; fails=$((fails + 1)); }
+
+# The mass measures judged beside the profile's: the profile's run-out
+# fails (4 -> 4 m, a thin tongue running on), the mass centroid converges
+# (1 -> 0.3 m, within 0.5), the run-out of 99 % of the mass does not
+# (1 -> 0.6 m: more than half, and beyond 0.5 m).
+level mass/1 40 5 50 6 9.7 40 30 6
+level mass/2 44 9 60 4 4.3 46 31 7
+level mass/3 45.4 13 64 3.55 4.0 48.9 31.3 7.6
+judge mass
+verdict mass "run-out [m]" "not converged"
+verdict mass "failed mass centroid x [m]" converged
+verdict mass "run-out of 99 % of the failed mass [m]" "not converged"
+verdict mass "scarp retreat [m]" converged
 
 [ "$fails" = 0 ] || { echo "$fails check(s) failed"; exit 1; }

@@ -75,8 +75,8 @@ PY
 # (restored from its checkpoint, then appended) and the same results: on one
 # rank to 1e-12 of each column's largest value, the bound the checkpoint
 # tests keep for chalk (tests/app/checkpoint.sh).
-/usr/bin/python3 - "$run/short_cliff_output" <<'PY'
-import csv, json, math, sys
+/usr/bin/python3 - "$run/short_cliff_output" "$src" <<'PY'
+import csv, json, math, os, sys
 import xml.etree.ElementTree as ET
 out = sys.argv[1]
 rows = list(csv.DictReader(open(f"{out}/cliff_history.csv")))
@@ -91,9 +91,34 @@ for column, key in (("debris_angle", "debris_angle_deg"),
                     ("run_out", "run_out_m"),
                     ("failed_area", "failed_area_m2"),
                     ("failed_reference_area", "failed_reference_area_m2"),
-                    ("scarp_retreat", "scarp_retreat_m")):
+                    ("scarp_retreat", "scarp_retreat_m"),
+                    ("failed_mass_centroid", "failed_mass_centroid_x_m"),
+                    ("failed_mass_x95", "failed_mass_x95_m"),
+                    ("failed_mass_x99", "failed_mass_x99_m"),
+                    ("mass_run_out", "mass_run_out_m")):
     # Both written with 10 significant digits or more.
     ok = ok and math.isclose(float(last[column]), cliff[key], rel_tol=1e-9)
+# Where the failed mass lies, recomputed from the last particles output by
+# tools/deposit_measures.py (points moved more than the 0.5 m displacement
+# threshold): the VTU holds Float32, 2e-6 m at x = 30 m, hence 1e-4 m.
+sys.path.insert(0, os.path.join(sys.argv[2], "tools"))
+from read_particles import read_particles, last_output
+from deposit_measures import mass_centroid_x, mass_quantile_x
+p = read_particles(last_output(out))
+moved = [i for i in range(len(p["x"]))
+         if math.hypot(p["x"][i] - p["reference_position_0"][i],
+                       p["y"][i] - p["reference_position_1"][i]) > 0.5]
+xs = [p["x"][i] for i in moved]
+v0s = [p["reference_volume"][i] for i in moved]
+tool = (mass_centroid_x(xs, v0s), mass_quantile_x(xs, v0s, 0.95),
+        mass_quantile_x(xs, v0s, 0.99))
+ok = ok and all(abs(a - cliff[k]) <= 1e-4 for a, k in zip(
+    tool, ("failed_mass_centroid_x_m", "failed_mass_x95_m",
+           "failed_mass_x99_m")))
+print(f"  failed mass: centroid {cliff['failed_mass_centroid_x_m']}, 95 % "
+      f"{cliff['failed_mass_x95_m']}, 99 % {cliff['failed_mass_x99_m']} m "
+      f"(tools/deposit_measures.py on the last output: "
+      f"{', '.join(f'{v:.6f}' for v in tool)}; {len(moved)} points)")
 # Before the collapse nothing has failed.
 ok = ok and float(rows[0]["failed_area"]) == 0.0
 print(f"  cliff_history.csv: {len(rows)} rows at {[r['time'] for r in rows]}, "

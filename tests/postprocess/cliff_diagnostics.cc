@@ -175,6 +175,7 @@ main()
     CHECK(!r.has_scarp);
     CHECK(std::isnan(r.debris_angle));
     CHECK(std::isnan(r.scarp_position));
+    CHECK(std::isnan(r.failed_mass_centroid) && std::isnan(r.mass_run_out));
   }
 
   // Rigid block [17, 20) x [5, 15.5) displaced by (4, -5) onto the beach
@@ -210,6 +211,13 @@ main()
     // Flat top, vertical sides: no flank to fit.
     CHECK(r.n_fit_points < 2);
     CHECK(std::isnan(r.debris_angle));
+    // Where the failed mass lies: 60 columns of equal mass from 21 + s/2
+    // to 24 - s/2, centroid 22.5; 95 % of it in the first 57 columns, 99 %
+    // (59.4 columns) needs the 60th. Tolerance: the sums' round-off.
+    CHECK_CLOSE(r.failed_mass_centroid, 22.5, 1e-9);
+    CHECK_CLOSE(r.failed_mass_x95, 21. + s / 2 + 56 * s, 1e-9);
+    CHECK_CLOSE(r.failed_mass_x99, 24. - s / 2, 1e-9);
+    CHECK_CLOSE(r.mass_run_out, 4. - s / 2, 1e-9);
 
     // With the default gap (4 bins) the block is not part of the pile: the
     // toe stays at the remaining cliff.
@@ -229,6 +237,24 @@ main()
     const auto r_dilated = Diagnostics(parameters).analyse(particles, cliff);
     CHECK_CLOSE(r_dilated.failed_area, 2. * 3. * 10.5, 1e-9);
     CHECK_CLOSE(r_dilated.failed_reference_area, 3. * 10.5, 1e-9);
+    // The mass measures rest on the reference volumes: dilation leaves
+    // them as they were (bit for bit).
+    CHECK(r_dilated.failed_mass_centroid == r_default.failed_mass_centroid);
+    CHECK(r_dilated.failed_mass_x99 == r_default.failed_mass_x99);
+
+    // One light point thrown 10 m ahead moves the profile's toe, not the
+    // mass's: 1e-6 of the block's mass 11.55 m beyond its centroid shifts
+    // the centroid by 11.55e-6 m (to 1e-11).
+    Diagnostics::Particle thrown = particles.front();
+    thrown.initial_position      = Point<2>(19.975, 15.475);
+    thrown.position              = Point<2>(34.05, 0.5);
+    thrown.reference_volume      = 1e-6 * 3. * 10.5;
+    particles.push_back(thrown);
+    parameters.maximum_gap = 20.;
+    const auto r_thrown    = Diagnostics(parameters).analyse(particles, cliff);
+    CHECK_CLOSE(r_thrown.run_out, 14.1, 1e-9); // the bin [34, 34.1)
+    CHECK_CLOSE(r_thrown.failed_mass_x99, 24. - s / 2, 1e-9);
+    CHECK_CLOSE(r_thrown.failed_mass_centroid, 22.5 + 11.55e-6, 1e-9);
   }
 
   // The Joss Bay profile on a lattice of 2 x 2 particles per 0.045 m cell.
@@ -287,7 +313,7 @@ main()
       else
         ++n_lines;
     CHECK(header);
-    CHECK(n_comments == 18);
+    CHECK(n_comments == 22);
     CHECK(n_lines == profile.n_bins());
     Diagnostics::write_particles_csv("joss_bay_particles.csv", particles);
     std::ifstream particles_in("joss_bay_particles.csv");
@@ -307,13 +333,19 @@ main()
     settled.n_failed_particles    = 1234;
     settled.scarp_position        = 21.5;
     settled.scarp_retreat         = 4.25;
+    settled.failed_mass_centroid  = 27.5;
+    settled.failed_mass_x95       = 29.75;
+    settled.failed_mass_x99       = 30.;
+    settled.mass_run_out          = 4.375;
     Diagnostics::append_history_row("history.csv", 1.5, 20., 3., r);
     Diagnostics::append_history_row("history.csv", 2.5, 10., 2., settled);
     std::ifstream history("history.csv");
     std::getline(history, line);
     CHECK(line == "time,kinetic_energy,max_speed,debris_angle,run_out,"
                   "debris_toe,failed_area,failed_reference_area,"
-                  "n_failed_particles,scarp_position,scarp_retreat");
+                  "n_failed_particles,scarp_position,scarp_retreat,"
+                  "failed_mass_centroid,failed_mass_x95,failed_mass_x99,"
+                  "mass_run_out");
     std::vector<std::vector<double>> rows;
     while (std::getline(history, line))
       {
@@ -325,13 +357,42 @@ main()
         rows.push_back(row);
       }
     CHECK(rows.size() == 2);
-    CHECK(rows[0].size() == 11 && rows[1].size() == 11);
+    CHECK(rows[0].size() == 15 && rows[1].size() == 15);
     CHECK(std::isnan(rows[0][3]));
     CHECK(rows[0][6] == 0.);
-    const std::vector<double> expected = {
-      2.5, 10., 2., 33.25, 4.5, 30.125, 58.375, 46.8125, 1234., 21.5, 4.25};
+    const std::vector<double> expected = {2.5,
+                                          10.,
+                                          2.,
+                                          33.25,
+                                          4.5,
+                                          30.125,
+                                          58.375,
+                                          46.8125,
+                                          1234.,
+                                          21.5,
+                                          4.25,
+                                          27.5,
+                                          29.75,
+                                          30.,
+                                          4.375};
     for (unsigned int k = 0; k < expected.size(); ++k)
       CHECK(rows[1][k] == expected[k]);
+
+    // A history begun by a version with other columns (a run continued
+    // from an older checkpoint): rows follow the file's header, a column
+    // unknown here is nan.
+    {
+      std::ofstream older("history_older.csv");
+      older << "time,run_out,no_such_column,scarp_retreat\n1,2,3,4\n";
+    }
+    Diagnostics::append_history_row("history_older.csv", 2.5, 10., 2., settled);
+    std::ifstream            older("history_older.csv");
+    std::vector<std::string> older_lines;
+    while (std::getline(older, line))
+      older_lines.push_back(line);
+    CHECK(older_lines.size() == 3);
+    CHECK(older_lines[0] == "time,run_out,no_such_column,scarp_retreat");
+    CHECK(older_lines[2] == "2.5,4.5,nan,4.25");
   }
 
   // Parameters.

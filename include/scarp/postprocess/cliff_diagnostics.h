@@ -61,6 +61,12 @@ namespace scarp
      *    also the sum of their reference (initial) volumes, the failed
      *    mass over the density, which the dilation of fully damaged
      *    debris does not inflate.
+     *  - Where the failed mass lies: the centroid along x of the failed
+     *    particles' reference volumes (their mass over the density), and the
+     *    smallest x of a failed particle such that the failed particles at
+     *    or landward of it hold at least 95 % (99 %) of that volume.
+     *    mass_run_out = x(99 %) - initial_toe. Unlike the profile's toe,
+     *    these do not follow a few light, much dilated points thrown ahead.
      *  - Scarp position: the smallest initial x of the failed particles that
      *    started within Top band of the top of the cliff, i.e. where the
      *    failure surface reaches the top; scarp_retreat = crest x - scarp
@@ -151,6 +157,15 @@ namespace scarp
         double       failed_reference_area = 0.;
         unsigned int n_failed_particles    = 0;
 
+        /// Centroid along x of the failed reference volumes.
+        double failed_mass_centroid = nan;
+        /// x at or landward of which 95 % of the failed reference volume lies.
+        double failed_mass_x95 = nan;
+        /// x at or landward of which 99 % of the failed reference volume lies.
+        double failed_mass_x99 = nan;
+        /// failed_mass_x99 - initial_toe: a run-out of the mass.
+        double mass_run_out = nan;
+
         /// Whether a failed particle started within the top band.
         bool   has_scarp      = false;
         double scarp_position = nan;
@@ -215,7 +230,8 @@ namespace scarp
       /// Appends one row of @p result at @p time to @p filename (the
       /// history of a run: time, kinetic energy, largest speed, debris
       /// angle, run-out, debris toe, failed area, failed area before it
-      /// moved, failed points, scarp position and retreat), with the
+      /// moved, failed points, scarp position and retreat, then the failed
+      /// mass's centroid, 95 and 99 % positions and run-out), with the
       /// header line first when the file is new or empty.
       static void
       append_history_row(const std::string &filename,
