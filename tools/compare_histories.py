@@ -14,7 +14,9 @@ t (from its log line "Cliff: failure onset at t = ...") after an "@".
 With --deposit it reads cliff_history.csv instead (a row per particle
 output) and prints the deposit: scarp retreat, run-out, failed area, the
 same points' area before they moved, and the ratio of the two (the
-bulking of the failed mass); --rates A,B adds the least-squares rates of
+bulking of the failed mass), and, where the history has them (runs since
+2026-12-07), the centroid of the failed mass and the x left of which 95
+and 99 % of it lie; --rates A,B adds the least-squares rates of
 scarp retreat and of the failed area before it moved (the pace of the
 progressive failure) over A to B seconds after the onset.
 
@@ -27,11 +29,17 @@ Example:
 import argparse
 import bisect
 import csv
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from run_summary import onset_time  # noqa: E402
+
+
+# Where the failed mass lies (cliff diagnostics, doc/scenes.md); histories
+# written before these columns existed lack them.
+MASS_COLUMNS = ("failed_mass_centroid", "failed_mass_x95", "failed_mass_x99")
 
 
 def slope(xs, ys):
@@ -54,11 +62,14 @@ def compare_deposits(args, times):
             directory, "cliff_history.csv"))) if r["scarp_retreat"] != "nan"]
         data = [(float(r["time"]) - onset, float(r["scarp_retreat"]),
                  float(r["run_out"]), float(r["failed_area"]),
-                 float(r["failed_reference_area"])) for r in rows]
+                 float(r["failed_reference_area"]),
+                 tuple(float(r.get(k) or "nan") for k in MASS_COLUMNS))
+                for r in rows]
         runs.append((label, onset, data))
     print("| time after the onset | " + " | ".join(
         f"{label}: scarp retreat [m], run-out [m], failed area (before it "
-        "moved) [m^2], bulking" for label, _, _ in runs) + " |")
+        "moved) [m^2], bulking[; failed mass centroid, 95, 99 % x [m]]"
+        for label, _, _ in runs) + " |")
     print("|---" * (len(runs) + 1) + "|")
     for dt in times:
         cells = []
@@ -66,10 +77,12 @@ def compare_deposits(args, times):
             if not data or dt > data[-1][0] + 0.25:
                 cells.append("(not reached)")
                 continue
-            t, retreat, run_out, area, before = min(
+            t, retreat, run_out, area, before, mass = min(
                 data, key=lambda d: abs(d[0] - dt))
+            masses = ("" if any(math.isnan(m) for m in mass) else
+                      "; " + ", ".join(f"{m:.2f}" for m in mass))
             cells.append(f"{retreat:.2f}, {run_out:.2f}, {area:.1f} "
-                         f"({before:.1f}), {area / before:.2f} "
+                         f"({before:.1f}), {area / before:.2f}{masses} "
                          f"[{t:.2f} s]")
         print(f"| {dt:g} s | " + " | ".join(cells) + " |")
     if args.rates:

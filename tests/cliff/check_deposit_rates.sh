@@ -33,4 +33,20 @@ done
 # 4 s after the onset: retreat 3, run-out 6, area 39 (26), bulking 1.50.
 echo "$out" | grep -q "^| 4 s | 3.00, 6.00, 39.0 (26.0), 1.50 \[4.00 s\] | 3.00, 6.00, 39.0 (26.0), 1.50 \[4.00 s\] |" \
   || { echo "FAIL: deposit 4 s after the onset"; exit 1; }
+
+# A history with the failed mass's columns (runs since 2026-12-07): the
+# cell adds centroid, 95 and 99 % (here 30 + s, 33 + s, 34 + s).
+mkdir -p c && cp a/summary.json c/
+awk 'BEGIN {
+  print "time,kinetic_energy,max_speed,debris_angle,run_out,debris_toe,failed_area,failed_reference_area,n_failed_particles,scarp_position,scarp_retreat,failed_mass_centroid,failed_mass_x95,failed_mass_x99,mass_run_out";
+  for (i = 0; i <= 30; ++i) { t = 0.5 * i; s = t - 2;
+    if (s < 0) { printf "%g,0,0,nan,0,31,0,0,0,nan,nan,nan,nan,nan,nan\n", t; continue }
+    a = 10 + 4 * s;
+    printf "%g,1,1,30,%g,40,%g,%g,10,20,%g,%g,%g,%g,%g\n", t, 2 + s, 1.5 * a, a, 1 + 0.5 * s, 30 + s, 33 + s, 34 + s, 3 + s } }' \
+  > c/cliff_history.csv
+out=$(/usr/bin/python3 "$src/tools/compare_histories.py" --deposit \
+        --times 4 "A=a" "C=c")
+echo "$out"
+echo "$out" | grep -q "^| 4 s | 3.00, 6.00, 39.0 (26.0), 1.50 \[4.00 s\] | 3.00, 6.00, 39.0 (26.0), 1.50; 34.00, 37.00, 38.00 \[4.00 s\] |" \
+  || { echo "FAIL: the failed mass 4 s after the onset"; exit 1; }
 echo "ok"
