@@ -3,7 +3,8 @@
 
 Reads cliff_history.csv of each run directory (one row per particle output:
 the debris angle, run-out, failed areas and scarp retreat of that state,
-with the kinetic energy; doc/scenes.md, "History") and prints a table of
+where the failed mass lies (when every run's history has it), with the
+kinetic energy; doc/scenes.md, "History") and prints a table of
 them, with the change of each quantity over the last --window seconds of
 the history: when those changes are small, the deposit has settled,
 whatever the kinetic energy still does. With --output, draws the
@@ -25,6 +26,11 @@ QUANTITIES = [("kinetic_energy", "kinetic energy [J]"),
               ("failed_area", "failed area [m^2]"),
               ("failed_reference_area", "failed area before it moved [m^2]"),
               ("scarp_retreat", "scarp retreat [m]")]
+# Where the failed mass lies; histories begun before 2026-12-07 lack them,
+# and they are printed and drawn only when every run has them.
+MASS_QUANTITIES = [("failed_mass_centroid", "failed mass centroid x [m]"),
+                   ("failed_mass_x95", "95 % of the failed mass left of x [m]"),
+                   ("failed_mass_x99", "99 % of the failed mass left of x [m]")]
 
 
 def read_history(directory):
@@ -68,25 +74,29 @@ def main():
             parser.error(f"{directory}: no rows from t = {args.from_time} s")
         runs.append((label, rows))
 
+    quantities = QUANTITIES + (
+        MASS_QUANTITIES if all(name in rows[0] for _, rows in runs
+                               for name, _ in MASS_QUANTITIES) else [])
     for label, rows in runs:
         print(f"{label}:")
-        print("| t [s] | " + " | ".join(t for _, t in QUANTITIES) + " |")
-        print("|---" * (len(QUANTITIES) + 1) + "|")
+        print("| t [s] | " + " | ".join(t for _, t in quantities) + " |")
+        print("|---" * (len(quantities) + 1) + "|")
         for r in rows:
             print(f"| {r['time']:.3f} | " + " | ".join(
-                f"{r[name]:.4g}" for name, _ in QUANTITIES) + " |")
+                f"{r[name]:.4g}" for name, _ in quantities) + " |")
         print(f"| change over the last {args.window:g} s | " + " | ".join(
             f"{change_over(rows, name, args.window):.3g}"
-            for name, _ in QUANTITIES) + " |")
+            for name, _ in quantities) + " |")
         print()
 
     if args.output:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(2, 3, figsize=(13, 6.5),
+        n_rows = (len(quantities) + 2) // 3
+        fig, axes = plt.subplots(n_rows, 3, figsize=(13, 3.25 * n_rows),
                                  constrained_layout=True, dpi=100)
-        for ax, (name, title) in zip(axes.flat, QUANTITIES):
+        for ax, (name, title) in zip(axes.flat, quantities):
             for label, rows in runs:
                 ax.plot([r["time"] for r in rows], [r[name] for r in rows],
                         marker="o", markersize=3, label=label)
