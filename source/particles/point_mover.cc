@@ -3,6 +3,7 @@
 
 #include <deal.II/base/array_view.h>
 
+#include <scarp/particles/checked_sort.h>
 #include <scarp/particles/point_mover.h>
 #include <scarp/particles/pool_growth.h>
 
@@ -334,7 +335,11 @@ namespace scarp
       n_last_moved            = 0;
       n_last_sent             = 0;
       n_moved_since_full_sort = 0;
-      particles.sort_particles_into_subdomains_and_cells();
+      CheckedSort<dim>::sort(particles,
+                             triangulation,
+                             numbers::invalid_unsigned_int,
+                             "of the points into their new cells",
+                             communicator);
       return false;
     }
 

@@ -80,13 +80,20 @@ namespace scarp
               if (current_volume)
                 offset = F * offset;
               // At most half-way to the nearer face of the box, the same
-              // on both sides (the children keep the parent's centre).
+              // on both sides (the children keep the parent's centre), and
+              // at most half the parent's cell: a child stays in that cell
+              // or one touching it, which its rank owns or has as a ghost.
+              // (F times the offsets of a point stretched tenfold reaches
+              // several cells; beyond the ghost layer the sort lost such
+              // children, and their mass, without a word.)
               for (unsigned int d = 0; d < dim; ++d)
                 {
                   const double reach =
-                    0.5 * std::max(0.,
-                                   std::min(x[d] - box.lower_bound(d),
-                                            box.upper_bound(d) - x[d]));
+                    std::min(0.5 * h,
+                             0.5 *
+                               std::max(0.,
+                                        std::min(x[d] - box.lower_bound(d),
+                                                 box.upper_bound(d) - x[d])));
                   offset[d] = std::max(-reach, std::min(offset[d], reach));
                 }
               const Tensor<1, dim> dX = F_inv * offset;

@@ -11,6 +11,7 @@
 #include <scarp/materials/chalk.h>
 #include <scarp/materials/material_factory.h>
 #include <scarp/particles/body_seeder.h>
+#include <scarp/particles/checked_sort.h>
 #include <scarp/scenes/shape_factory.h>
 #include <scarp/simulation/simulation.h>
 
@@ -109,7 +110,11 @@ namespace scarp
       if (!refines && n_split == 0)
         return;
       loop.counters.points_split += n_split;
-      particles.sort_particles_into_subdomains_and_cells();
+      particles::CheckedSort<dim>::sort(particles,
+                                        tria,
+                                        layout.mass,
+                                        "after the refinement and the split",
+                                        communicator);
       // A second repartition (and particle transfer) only where the split
       // points are spread so unevenly that the ranks are out of balance.
       if (points_out_of_balance())

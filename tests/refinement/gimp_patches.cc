@@ -18,13 +18,23 @@
 //   unique over all ranks.
 // - split_stretched: splitting by the current volume V0 det F (Mesh/
 //   Refinement/Split stretched points) splits a point dilated 4 times and
-//   one dilated 64 times with shear into 2^dim children each, at F times
+//   one dilated 9 times with shear into 2^dim children each, at F times
 //   +-a/4 of the parent (a = V0^(1/dim)), reference positions at +-a/4,
-//   each with V0 / 2^dim and the parent's velocity and F; the children of
-//   the second, still too large, do not split again (a point splits by its
-//   current volume at most once below its cell's share). It leaves alone a
-//   point at rest size, a compressed one and one sheared without a change
-//   of volume; the reference-volume rule splits none of them.
+//   each with V0 / 2^dim and the parent's velocity and F. It leaves alone
+//   a point at rest size, a compressed one and one sheared without a
+//   change of volume; the reference-volume rule splits none of them. A
+//   point stretched 64 times along x (F = diag(64, 2, 1)) has its
+//   children's offsets clipped to half its cell along x (F a/4 = 8 cells),
+//   the same on both sides, so that on any partition they lie in its cell
+//   or one touching it and the sort keeps them all (before the clip the
+//   Joss Bay runs with the switch lost children, and mass, on 2 ranks);
+//   its children, still too large, do not split again (a point splits by
+//   its current volume at most once below its cell's share);
+// - checked_sort: a point moved out of the mesh is dropped by the sort
+//   without a message; a point moved inside the mesh beyond the cells its
+//   rank owns or has as ghosts (2 ranks), which deal.II's sort loses,
+//   stops it on every rank with a message naming the number of points
+//   lost, their mass and where the first was.
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -33,6 +43,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <scarp/particles/checked_sort.h>
 #include <scarp/particles/point_splitter.h>
 #include <scarp/particles/property_layout.h>
 #include <scarp/transfer/gimp_patches.h>
@@ -40,6 +51,7 @@
 
 #include "../common/scene_runner.h"
 
+#include <cctype>
 #include <random>
 #include <set>
 
@@ -520,12 +532,13 @@ namespace
     Particles::ParticleHandler<dim> particles(tria,
                                               mapping,
                                               layout.n_properties());
-    // Five points of 2 per cell direction (V0 = 0.5^dim): dilated
+    // Six points of 2 per cell direction (V0 = 0.5^dim): dilated
     // (F = diag(4, 1, 1)), at rest size (F = I), compressed
-    // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1), and dilated 64
-    // times with shear (F = [8 2; 0 8], F_22 = 1).
+    // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1), dilated 9
+    // times with shear (F = [3 1; 0 3], F_22 = 1), and stretched 64 times
+    // along x (F = diag(64, 2, 1)).
     const double       V0     = std::pow(0.5, dim);
-    const unsigned int n      = 5;
+    const unsigned int n      = 6;
     const auto         centre = [](const double a, const double b) {
       Point<dim> x;
       for (unsigned int d = 0; d < dim; ++d)
@@ -536,10 +549,11 @@ namespace
                                  centre(5.5, 5.5),
                                  centre(2.5, 5.5),
                                  centre(5.5, 2.5),
-                                 centre(4.1, 4.1)};
-    const double     F00[n]   = {4., 1., 0.25, 1., 8.};
-    const double     F01[n]   = {0., 0., 0., 3., 2.};
-    const double     F11[n]   = {1., 1., 1., 1., 8.};
+                                 centre(4.1, 4.1),
+                                 centre(3.9, 6.5)};
+    const double     F00[n]   = {4., 1., 0.25, 1., 3., 64.};
+    const double     F01[n]   = {0., 0., 0., 3., 1., 0.};
+    const double     F11[n]   = {1., 1., 1., 1., 3., 2.};
     const auto       F_of     = [&](const unsigned int k) {
       Tensor<2, dim> F = unit_symmetric_tensor<dim>();
       F[0][0]          = F00[k];
@@ -580,27 +594,31 @@ namespace
           << ", by V0 det F " << by_current << ", again " << again << ", "
           << particles.n_global_particles() << " points" << std::endl;
     check(by_reference == 0, "the reference-volume rule splits none");
-    // The children of the point dilated 64 times are still 2^dim times too
+    // The children of the point stretched 64 times along x are still too
     // large, each of them, but V0 / 2^dim is below half the cell's share:
     // they do not split again.
-    check(by_current == 2 && again == 0,
-          "only the two dilated points split, once");
-    check(particles.n_global_particles() == n - 2 + 2 * (1u << dim),
-          "2^dim children of each");
+    check(by_current == 3 && again == 0,
+          "only the three dilated points split, once");
+    check(particles.n_global_particles() == n - 3 + 3 * (1u << dim),
+          "2^dim children of each, none lost in the sort");
     // The children of points 0 and 4 (mass 10 and 50), told apart by their
     // mass: at F times +-a/4 (a = V0^(1/dim)) of the parent in every
     // reference direction, inside the parallelogram it has become.
     const double a        = std::pow(V0, 1. / dim);
-    unsigned int found[n] = {0, 0, 0, 0, 0};
+    unsigned int found[n] = {0, 0, 0, 0, 0, 0};
     double       worst    = 0;
-    double       mass[n]  = {0, 0, 0, 0, 0};
+    double       mass[n]  = {0, 0, 0, 0, 0, 0};
     bool         others   = true;
+    // Point 5: the x offset F_00 a/4 = 8 clipped to half its cell, 0.5;
+    // the others F_dd a/4 (0.25 along y, 0.125 along z), inside it.
+    Tensor<1, dim> clipped_sum;
+    double         clipped_worst = 0;
     for (const auto &particle : particles)
       {
         const double *p = particle.get_properties().data();
         const auto    x = particle.get_location();
         unsigned int  k = n;
-        for (const unsigned int parent : {0u, 4u})
+        for (const unsigned int parent : {0u, 4u, 5u})
           if (std::abs(p[layout.mass] - 10. * (parent + 1) / (1u << dim)) <
               1e-12)
             k = parent;
@@ -620,6 +638,22 @@ namespace
         Tensor<1, dim> dX;
         for (unsigned int d = 0; d < dim; ++d)
           dX[d] = p[layout.reference_position + d] - where[k][d];
+        if (k == 5)
+          {
+            const Tensor<1, dim> dx = x - where[k];
+            clipped_sum += dx;
+            for (unsigned int d = 0; d < dim; ++d)
+              clipped_worst =
+                std::max(clipped_worst,
+                         std::abs(std::abs(dx[d]) -
+                                  (d == 0 ? 0.5 : F_of(k)[d][d] * a / 4)));
+            // The reference offset follows the clipped offset: F dX = dx.
+            const Tensor<1, dim> back = F_of(k) * dX;
+            for (unsigned int d = 0; d < dim; ++d)
+              clipped_worst =
+                std::max(clipped_worst, std::abs(back[d] - dx[d]));
+            continue;
+          }
         // The reference offset is +-a/4 along every axis ...
         for (unsigned int d = 0; d < dim; ++d)
           worst = std::max(worst, std::abs(std::abs(dX[d]) - a / 4));
@@ -642,7 +676,19 @@ namespace
         found[k] = Utilities::MPI::sum(found[k], MPI_COMM_WORLD);
         mass[k]  = Utilities::MPI::sum(mass[k], MPI_COMM_WORLD);
       }
-    worst = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    worst         = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    clipped_worst = Utilities::MPI::max(clipped_worst, MPI_COMM_WORLD);
+    for (unsigned int d = 0; d < dim; ++d)
+      clipped_sum[d] = Utilities::MPI::sum(clipped_sum[d], MPI_COMM_WORLD);
+    out() << "  stretched point: " << found[5] << " children, mass " << mass[5]
+          << ", offsets off by " << clipped_worst << ", their sum "
+          << clipped_sum << std::endl;
+    // Sums and differences of numbers near 4 and 0.5: round-off.
+    check(found[5] == (1u << dim) && std::abs(mass[5] - 60.) < 1e-13 &&
+            clipped_worst < 1e-14 && clipped_sum.norm() < 1e-13,
+          "the stretched point's children: offsets clipped to half its "
+          "cell along x, symmetric, reference offsets F^-1 times them, all "
+          "kept with the mass");
     out() << "  children " << found[0] << " and " << found[4] << ", their mass "
           << mass[0] << " and " << mass[4] << ", worst deviation " << worst
           << std::endl;
@@ -657,6 +703,106 @@ namespace
           "V0 / 2^dim, the parent's velocity and F (to 1e-14)");
     check(std::abs(mass[0] - 10.) < 1e-13 && std::abs(mass[4] - 50.) < 1e-13,
           "the mass of each parent kept");
+  }
+
+  template <int dim>
+  void
+  checked_sort()
+  {
+    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
+    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
+    MappingCartesian<dim>                 mapping;
+    scarp::particles::PropertyLayout<dim> layout;
+    layout.build(/*apic=*/false, {});
+    Particles::ParticleHandler<dim> particles(tria,
+                                              mapping,
+                                              layout.n_properties());
+    // One point of 2.5 kg in the centre of every cell, its id the cell's
+    // index.
+    types::particle_index id = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        if (cell->is_locally_owned())
+          {
+            std::vector<double> p(layout.n_properties(), 0.);
+            p[layout.mass] = 2.5;
+            Point<dim> xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              xi[d] = 0.5;
+            particles.insert_particle(cell->center(), xi, id, cell, p);
+          }
+        ++id;
+      }
+    particles.update_cached_numbers();
+    const auto n            = particles.n_global_particles();
+    const auto sort_message = [&]() {
+      std::string message;
+      try
+        {
+          scarp::particles::CheckedSort<dim>::sort(
+            particles, tria, layout.mass, "of the test", MPI_COMM_WORLD);
+        }
+      catch (const std::exception &e)
+        {
+          // deal.II wraps the message's lines: compare it with its
+          // whitespace collapsed.
+          for (const char c : std::string(e.what()))
+            if (!std::isspace(static_cast<unsigned char>(c)))
+              message += c;
+            else if (!message.empty() && message.back() != ' ')
+              message += ' ';
+        }
+      return message;
+    };
+    check(sort_message().empty() && particles.n_global_particles() == n,
+          "no point lost, no message");
+
+    // A point moved out of the mesh (as the removal of stretched points
+    // does on purpose) is dropped without a message.
+    for (auto &particle : particles)
+      if (particle.get_id() == 0)
+        {
+          Point<dim> outside;
+          for (unsigned int d = 0; d < dim; ++d)
+            outside[d] = d == 0 ? 16.5 : 0.5;
+          particle.set_location(outside);
+        }
+    check(sort_message().empty() && particles.n_global_particles() == n - 1,
+          "a point out of the mesh dropped without a message");
+
+    // A point moved inside the mesh but far from its cell, to the cell
+    // farthest from rank 0's: on several ranks beyond rank 0's ghosts.
+    Point<dim> far;
+    for (unsigned int d = 0; d < dim; ++d)
+      far[d] = 7.25;
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    bool               moved = false;
+    for (auto &particle : particles)
+      if (rank == 0 && !moved && particle.get_location().distance(far) > 4.)
+        {
+          particle.set_location(far);
+          moved = true;
+        }
+    const std::string message = sort_message();
+    const auto        n_after = particles.n_global_particles();
+    out() << "  " << dim << "D, moved far: " << n - 1 << " -> " << n_after
+          << " points; "
+          << (message.empty() ? std::string("no message")
+                              : message.substr(message.find("1 material"),
+                                               message.find(". A lost point") -
+                                                 message.find("1 material")))
+          << std::endl;
+    // On one rank the sort finds the point anywhere; on several, deal.II
+    // 9.4 loses it, and then the message must say so on every rank.
+    const std::string expected =
+      std::string("1 material point(s) with 2.5 kg (per metre in 2D) lost "
+                  "inside the mesh in the sort of the test: beyond the "
+                  "cells their rank owns or has as ghosts; the first at (") +
+      (dim == 2 ? "7.25, 7.25)" : "7.25, 7.25, 7.25)");
+    check(n_after == n - 1 ? message.empty()
+                           : message.find(expected) != std::string::npos,
+          "a point lost inside the mesh stops the sort on every rank, "
+          "naming count, mass and place; none lost, no message");
   }
 } // namespace
 
@@ -687,8 +833,13 @@ main(int argc, char **argv)
                        split<2>();
                        split<3>();
                      }},
-                    {"split_stretched", [] {
+                    {"split_stretched",
+                     [] {
                        split_stretched<2>();
                        split_stretched<3>();
+                     }},
+                    {"checked_sort", [] {
+                       checked_sort<2>();
+                       checked_sort<3>();
                      }}});
 }
