@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace scarp
 {
@@ -82,18 +83,21 @@ namespace scarp
               // At most half-way to the nearer face of the box, the same
               // on both sides (the children keep the parent's centre), and
               // at most half the parent's cell: a child stays in that cell
-              // or one touching it, which its rank owns or has as a ghost.
-              // (F times the offsets of a point stretched tenfold reaches
-              // several cells; beyond the ghost layer the sort lost such
-              // children, and their mass, without a word.)
+              // or one touching it, which its rank owns or has as a ghost,
+              // when the split goes by the current volume (F times the
+              // offsets of a point stretched tenfold reaches several cells;
+              // beyond the ghost layer the sort lost such children, and
+              // their mass, without a word). A split by the reference
+              // volume keeps the exact sub-boxes: a quarter of the side of
+              // a point from a cell k levels coarser, h 2^(k-2) / n.
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  const double reach =
-                    std::min(0.5 * h,
-                             0.5 *
-                               std::max(0.,
-                                        std::min(x[d] - box.lower_bound(d),
-                                                 box.upper_bound(d) - x[d])));
+                  const double reach = std::min(
+                    current_volume ? 0.5 * h
+                                   : std::numeric_limits<double>::max(),
+                    0.5 * std::max(0.,
+                                   std::min(x[d] - box.lower_bound(d),
+                                            box.upper_bound(d) - x[d])));
                   offset[d] = std::max(-reach, std::min(offset[d], reach));
                 }
               const Tensor<1, dim> dX = F_inv * offset;

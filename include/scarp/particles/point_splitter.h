@@ -40,9 +40,9 @@ namespace scarp
      * point splits this way only while V0 is at least half its cell's
      * share, so at most once below it: children keep F, and those of a
      * point dilated a thousandfold would otherwise split at every pass.
-     * Every offset is at most half the parent's cell along each axis, so
-     * that a child lies in its parent's cell or one touching it (owned or
-     * ghost): the sort cannot lose it.
+     * By the current volume every offset is at most half the parent's cell
+     * along each axis, so that a child lies in its parent's cell or one
+     * touching it (owned or ghost): the sort cannot lose it.
      */
     template <int dim>
     class PointSplitter
