@@ -1,9 +1,11 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/grid/grid_tools.h>
+
 #include <scarp/particles/checked_sort.h>
 
-#include <algorithm>
 #include <array>
 #include <iomanip>
 #include <limits>
@@ -21,25 +23,15 @@ namespace scarp
                            const std::string               &when,
                            const MPI_Comm                   communicator)
     {
-      // The coarse cells are on every rank: the same box everywhere.
-      Point<dim> lower, upper;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          lower[d] = std::numeric_limits<double>::max();
-          upper[d] = std::numeric_limits<double>::lowest();
-        }
-      for (const auto &cell : triangulation.cell_iterators_on_level(0))
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-              upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-            }
+      // Every rank holds the whole coarse mesh: the same box everywhere.
+      const BoundingBox<dim> box =
+        GridTools::compute_bounding_box(triangulation);
       const auto inside = [&](const Point<dim> &x) {
         for (unsigned int d = 0; d < dim; ++d)
           {
-            const double margin = 1e-10 * (upper[d] - lower[d]);
-            if (!(x[d] > lower[d] + margin && x[d] < upper[d] - margin))
+            const double margin = 1e-10 * box.side_length(d);
+            if (!(x[d] > box.lower_bound(d) + margin &&
+                  x[d] < box.upper_bound(d) - margin))
               return false;
           }
         return true;

@@ -520,18 +520,34 @@ namespace
           "each refined cell holds 2^dim children (the lattice is kept)");
   }
 
+  /// A box of 8^dim cells of edge 1 and an empty particle handler with the
+  /// plain property layout (no APIC, no material state).
+  template <int dim>
+  struct PlainPoints
+  {
+    PlainPoints()
+      : tria(MPI_COMM_WORLD)
+    {
+      GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
+      layout.build(/*apic=*/false, {});
+      particles.initialize(tria, mapping, layout.n_properties());
+    }
+
+    parallel::distributed::Triangulation<dim> tria;
+    MappingCartesian<dim>                     mapping;
+    scarp::particles::PropertyLayout<dim>     layout;
+    Particles::ParticleHandler<dim>           particles;
+  };
+
+
   template <int dim>
   void
   split_stretched()
   {
-    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
-    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
-    MappingCartesian<dim>                 mapping;
-    scarp::particles::PropertyLayout<dim> layout;
-    layout.build(/*apic=*/false, {});
-    Particles::ParticleHandler<dim> particles(tria,
-                                              mapping,
-                                              layout.n_properties());
+    PlainPoints<dim> plain;
+    auto            &tria      = plain.tria;
+    auto            &layout    = plain.layout;
+    auto            &particles = plain.particles;
     // Six points of 2 per cell direction (V0 = 0.5^dim): dilated
     // (F = diag(4, 1, 1)), at rest size (F = I), compressed
     // (F = diag(0.25, 1, 1)), sheared (F_01 = 3, det F = 1), dilated 9
@@ -709,14 +725,10 @@ namespace
   void
   checked_sort()
   {
-    parallel::distributed::Triangulation<dim> tria(MPI_COMM_WORLD);
-    GridGenerator::subdivided_hyper_cube(tria, 8, 0., 8.);
-    MappingCartesian<dim>                 mapping;
-    scarp::particles::PropertyLayout<dim> layout;
-    layout.build(/*apic=*/false, {});
-    Particles::ParticleHandler<dim> particles(tria,
-                                              mapping,
-                                              layout.n_properties());
+    PlainPoints<dim> plain;
+    auto            &tria      = plain.tria;
+    auto            &layout    = plain.layout;
+    auto            &particles = plain.particles;
     // One point of 2.5 kg in the centre of every cell, its id the cell's
     // index.
     types::particle_index id = 0;

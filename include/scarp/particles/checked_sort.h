@@ -22,7 +22,7 @@ namespace scarp
      * points puts them beyond the mesh's corner); a point inside the mesh
      * is lost only when it lies beyond the cells its rank owns or has as
      * ghosts, which is lost mass and a bug. So the sort is collective, and
-     * if any rank lost a point inside the bounding box of the coarse mesh
+     * if any rank lost a point inside the bounding box of the mesh
      * (by more than 1e-10 of its size), every rank throws an ExcMessage
      * naming how many were lost, the mass they carried, where the first of
      * them was, and @p when (what the run was doing).
