@@ -17,10 +17,11 @@ failure> seconds later — and, in the reference configuration:
 
 Prints a Markdown table (x_f at a few heights, failed and damaged areas, and
 the RMS distance of each surface to the finest run's over the strips both
-have), and draws the surfaces over the finest run's damage in one PNG.
+have, and from each run's summary.json its onset, size and cost) and, with
+--output, draws the surfaces over the finest run's damage in one PNG.
 
 Usage:
-  compare_failure_surfaces.py --output doc/figures/joss_bay/failure_surfaces.png \\
+  compare_failure_surfaces.py [--output doc/figures/joss_bay/failure_surfaces.png] \\
       LABEL=DIR [LABEL=DIR ...]     (finest resolution last)
 """
 import argparse
@@ -76,6 +77,9 @@ def summary_rows(items):
     def row(name, get):
         cells = []
         for s in summaries:
+            if not s:
+                cells.append("-")  # no summary.json: nothing to say
+                continue
             try:
                 cells.append(get(s))
             except (KeyError, TypeError, ZeroDivisionError):
@@ -119,7 +123,8 @@ def main():
     parser.add_argument("--heights", type=float, nargs="+",
                         default=[1, 3, 5, 7, 9, 11, 13, 15],
                         help="heights of the table rows [m]")
-    parser.add_argument("--output", required=True, help="PNG to write")
+    parser.add_argument("--output", default=None,
+                        help="PNG to write (none: the table only)")
     args = parser.parse_args()
 
     runs = []
@@ -157,7 +162,12 @@ def main():
     print(f"| RMS distance to {runs[-1][0]} [m] | "
           + " | ".join(f"{v:.2f}" for v in rms) + " |")
     summary_rows(args.runs)
+    if args.output:
+        draw(runs, args)
 
+
+def draw(runs, args):
+    """The surfaces over the finest run's damage."""
     fig, ax = plt.subplots(figsize=(8, 5))
     pts = runs[-1][1]
     sc = ax.scatter([p["x0"] for p in pts], [p["y0"] for p in pts],
