@@ -12,21 +12,10 @@ one is a point of the same material.
 """
 import argparse
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from read_particles import read_particles  # noqa: E402
-
-
-def outputs(directory):
-    """(time, pvtu path) for each record of particles.pvd."""
-    pvd = os.path.join(directory, "particles.pvd")
-    if not os.path.exists(pvd):
-        raise SystemExit("no particles.pvd in %s" % directory)
-    records = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"',
-                         open(pvd).read())
-    return [(float(t), os.path.join(directory, f)) for t, f in records]
+from read_particles import particle_outputs, read_particles  # noqa: E402
 
 
 def main():
@@ -42,7 +31,7 @@ def main():
     probes = [tuple(float(c) for c in a.split(",")) for a in args.at]
     print("| t [s] | x0, y0 [m] | " + " | ".join(args.fields) + " |")
     print("|---" * (2 + len(args.fields)) + "|")
-    for time, pvtu in outputs(args.directory)[::args.every]:
+    for time, pvtu in particle_outputs(args.directory)[::args.every]:
         points = read_particles(pvtu)
         missing = [f for f in args.fields if f not in points]
         if missing:

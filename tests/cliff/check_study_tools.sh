@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# tools/compare_failure_surfaces.py, tools/dilation_classes.py and
-# tools/summarise_runs.py (the tables of the convergence study in
+# tools/compare_failure_surfaces.py, tools/dilation_classes.py,
+# tools/summarise_runs.py and tools/probe_points.py (the tables of the convergence study in
 # doc/joss_bay.md and doc/joss_bay/*.md) on hand-made inputs of known
 # values. Every expected number is an exact sum or a square root of the
 # values below, printed to its digits (none lies on a rounding boundary):
@@ -37,6 +37,13 @@
 #   does not count); transfer and plastic dissipation 195 000 and
 #   3 742 000 J at the last row. A run that stopped at its failure: "-"
 #   for the debris columns.
+# probe_points.py: two outputs (t = 0.5 and 1.5 s) of three points whose
+#   reference positions are (0, 0), (1, 0) and (0, 2) and whose damage is
+#   0.1, 0.2, 0.3 at the first and 0.4, 0.5, 0.6 at the second; the second
+#   output holds them in another order and moved 5 m: the probe at
+#   (0.9, 0.2) follows the point of reference (1, 0) (damage 0.2, then 0.5),
+#   the one at (0.1, 1.5) that of (0, 2); --every 2 keeps the first output
+#   only; a field the output lacks is refused with the fields it has.
 # Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
 set -euo pipefail
 src="$2"; run="$3"
@@ -95,6 +102,15 @@ run("rest", {"failure_onset_s": 4.25, "debris_angle_deg": 42.33,
              "run_out_m": 7.68, "failed_area_m2": 61.114,
              "failed_reference_area_m2": 41.843, "scarp_retreat_m": 4.1666})
 run("onset", {"failure_onset_s": 4.25})
+
+def probe(x0, y0, d, shift):
+    return {"x": x0 + shift, "y": y0, "reference_position_0": x0,
+            "reference_position_1": y0, "reference_position_2": 0.0,
+            "damage": d}
+
+first = [probe(0, 0, 0.1, 0), probe(1, 0, 0.2, 0), probe(0, 2, 0.3, 0)]
+second = [probe(0, 2, 0.6, 5), probe(0, 0, 0.4, 5), probe(1, 0, 0.5, 5)]
+write_run("probe", [(0.5, [first[:1], first[1:]]), (1.5, [second[:2], second[2:]])])
 PY
 
 fail() { echo "FAIL: $1"; exit 1; }
@@ -145,4 +161,16 @@ if /usr/bin/python3 "$src/tools/summarise_runs.py" "N=none" > none.out 2>&1; the
   fail "a run without summary.json was accepted"
 fi
 grep -q "summary.json" none.out || { cat none.out; fail "message for a missing summary"; }
+out=$(/usr/bin/python3 "$src/tools/probe_points.py" probe --at 0.9,0.2 0.1,1.5 --fields damage)
+echo "$out"
+expect "$out" "| 0.500 | 1.00, 0.00 | 0.2 |" "probe 1, first output"
+expect "$out" "| 0.500 | 0.00, 2.00 | 0.3 |" "probe 2, first output"
+expect "$out" "| 1.500 | 1.00, 0.00 | 0.5 |" "probe 1 follows its point"
+expect "$out" "| 1.500 | 0.00, 2.00 | 0.6 |" "probe 2 follows its point"
+out=$(/usr/bin/python3 "$src/tools/probe_points.py" probe --at 0.9,0.2 --fields damage --every 2)
+[ "$(echo "$out" | grep -c '^| [0-9]')" = 1 ] || fail "--every 2: one output expected"
+if /usr/bin/python3 "$src/tools/probe_points.py" probe --at 0,0 --fields kappa > nofield.out 2>&1; then
+  fail "a missing field was accepted"
+fi
+grep -q "has no field kappa (it has: damage" nofield.out || { cat nofield.out; fail "missing field message"; }
 echo "ok"
