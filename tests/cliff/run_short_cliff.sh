@@ -148,3 +148,14 @@ area = json.load(open(sys.argv[1]))["cliff"]["failed_area_m2"]
 assert float(sys.argv[2]) == float(f"{area:.3g}"), (sys.argv[2], area)
 print(f"ok: plot_cliff_history.py, failed area changed by {sys.argv[2]} m^2")
 PY
+
+# tools/plot_run.sh, the picture step of tools/run_main_job.sh (the README's
+# first command): on this run to rest it draws the energies, the final
+# profile over the initial one and the particles at each snapshot the run
+# wrote (start, failure, end; no after_failure snapshot here), each a PNG.
+rm -f short_cliff_output/*.png
+bash "$src/tools/plot_run.sh" short_cliff_output > plot_run.log 2>&1 || { cat plot_run.log; exit 1; }
+for png in energies profile cliff_start_particles cliff_failure_particles cliff_end_particles; do
+  head -c 8 "short_cliff_output/$png.png" | grep -q PNG || { cat plot_run.log; echo "no $png.png"; exit 1; }
+done
+echo "ok: tools/plot_run.sh drew 5 pictures"
