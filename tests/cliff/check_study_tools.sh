@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tools/compare_failure_surfaces.py, tools/dilation_classes.py,
-# tools/summarise_runs.py and tools/probe_points.py (the tables of the convergence study in
+# tools/summarise_runs.py, tools/probe_points.py and
+# tools/plot_damage_history.py (the tables of the convergence study in
 # doc/joss_bay.md and doc/joss_bay/*.md) on hand-made inputs of known
 # values. Every expected number is an exact sum or a square root of the
 # values below, printed to its digits (none lies on a rounding boundary):
@@ -44,6 +45,14 @@
 #   (0.9, 0.2) follows the point of reference (1, 0) (damage 0.2, then 0.5),
 #   the one at (0.1, 1.5) that of (0, 2); --every 2 keeps the first output
 #   only; a field the output lacks is refused with the fields it has.
+# plot_damage_history.py: statistics rows at t = 0..5 s, stage 0 then 1
+#   from t = 2 s (so the time counts from t = 1 s, the last row before it),
+#   damaged volume 0.5 until then, then 0.504, 0.6, 1.0 (grown by 0, 0.004,
+#   0.1, 0.5 from the first row of stage 1, at 1, 2, 3, 4 s since the
+#   start), largest speed above 0.1 m/s first at t = 4 s: at 1.5 s since
+#   the start 0.00, at 2.5 s 0.10, none at 9 s; grown beyond 0.01 from
+#   3.00 s; onset 3.00 s; a run never faster than 0.1 m/s has its onset
+#   after its last row ("> 4.00").
 # Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
 set -euo pipefail
 src="$2"; run="$3"
@@ -111,6 +120,15 @@ def probe(x0, y0, d, shift):
 first = [probe(0, 0, 0.1, 0), probe(1, 0, 0.2, 0), probe(0, 2, 0.3, 0)]
 second = [probe(0, 2, 0.6, 5), probe(0, 0, 0.4, 5), probe(1, 0, 0.5, 5)]
 write_run("probe", [(0.5, [first[:1], first[1:]]), (1.5, [second[:2], second[2:]])])
+
+for name, speeds in (("creep", (0, 0, 0, 0.05, 0.2, 1)),
+                     ("slow", (0, 0, 0, 0.05, 0.05, 0.1))):
+    os.makedirs(name, exist_ok=True)
+    with open(f"{name}/statistics.csv", "w") as f:
+        f.write("time,stage,damaged_volume,max_speed\n")
+        for t, stage, v, u in zip(range(6), (0, 0, 1, 1, 1, 1),
+                                  (0.5, 0.5, 0.5, 0.504, 0.6, 1.0), speeds):
+            f.write(f"{t},{stage},{v},{u}\n")
 PY
 
 fail() { echo "FAIL: $1"; exit 1; }
@@ -173,4 +191,14 @@ if /usr/bin/python3 "$src/tools/probe_points.py" probe --at 0,0 --fields kappa >
   fail "a missing field was accepted"
 fi
 grep -q "has no field kappa (it has: damage" nofield.out || { cat nofield.out; fail "missing field message"; }
+
+out=$(/usr/bin/python3 "$src/tools/plot_damage_history.py" --output history.png \
+        "C=creep" "S=slow" --times 1.5 2.5 9)
+echo "$out"
+expect "$out" "| 1.5 | 0.00 | 0.00 |" "grown at 1.5 s"
+expect "$out" "| 2.5 | 0.10 | 0.10 |" "grown at 2.5 s"
+expect "$out" "| 9 | - | - |" "after the last row"
+expect "$out" "| damage grown > 0.01 m^3/m from [s] | 3.00 | 3.00 |" "growth start"
+expect "$out" "| failure onset [s] | 3.00 | > 4.00 |" "onset"
+head -c 8 history.png | grep -q PNG || fail "no damage history PNG"
 echo "ok"
