@@ -19,6 +19,9 @@ namespace scarp
     {
       using Clock = std::chrono::steady_clock;
 
+      /// How many points ahead the sweeps prefetch a point's properties.
+      constexpr std::size_t prefetch_distance = 4;
+
       /// Seconds since @p start.
       inline double
       seconds_since(const Clock::time_point &start)
@@ -38,6 +41,19 @@ namespace scarp
         for (unsigned int i = dim; i < 3; ++i)
           b[i][i] = zz;
         return b;
+      }
+
+      /// Ask for the property record of the point @p ahead places on in
+      /// the sweep's order while this one is worked on: a record spans
+      /// three cache lines, and the sweeps read every point's from memory.
+      inline void
+      prefetch_record(const std::vector<double *> &records,
+                      const std::size_t            ahead,
+                      const unsigned int           n_doubles)
+      {
+        if (ahead < records.size())
+          for (unsigned int i = 0; i < n_doubles; i += 8)
+            __builtin_prefetch(records[ahead] + i, 1, 3);
       }
 
       template <int dim>
@@ -342,8 +358,7 @@ namespace scarp
 
     template <int dim>
     void
-    MpmTransfer<dim>::particles_to_grid(const Tensor<1, dim> &gravity,
-                                        const bool            momentum_only)
+    MpmTransfer<dim>::particles_to_grid(const Tensor<1, dim> &gravity)
     {
       mass = 0;
       for (unsigned int d = 0; d < dim; ++d)
@@ -377,7 +392,7 @@ namespace scarp
           // Accumulators of the cell: mass, momentum d, force d and, with
           // a body force, its share of the force d (n each): its work is
           // booked on the grid, where it acts.
-          const bool with_body = body_force && !momentum_only;
+          const bool with_body = body_force != nullptr;
           local_sums.assign((1 + (with_body ? 3 : 2) * dim) * n, 0.);
           double *const local_mass = local_sums.data();
           double *local_momentum[dim], *local_force[dim], *local_body[dim];
@@ -397,7 +412,7 @@ namespace scarp
           // cell) fed energy into the motion without bound
           // (doc/examples.md, section 3).
           double mean_normal_stress = 0;
-          if (f_bar && !momentum_only)
+          if (f_bar)
             {
               double sum_v = 0;
               for (unsigned int q = occupied.point_begin;
@@ -420,6 +435,9 @@ namespace scarp
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
                ++q)
             {
+              prefetch_record(point_properties,
+                              q + prefetch_distance,
+                              layout.n_properties());
               const double    *p = point_properties[q];
               const Point<dim> xp =
                 x0 + h * pool.get_reference_location(point_handle[q]);
@@ -430,24 +448,6 @@ namespace scarp
               Tensor<2, dim>       C;
               if (apic)
                 C = layout.get_matrix(p, layout.affine);
-              if (momentum_only)
-                {
-                  // The MUSL remap maps the point velocities only, also
-                  // with APIC. C = grad v_grid^{n+1} is unbounded next to a
-                  // node of tiny mass (grad S_i does not vanish with S_i);
-                  // mapped here it would make the stress velocity unbounded
-                  // too, and APIC blew up as soon as points crossed into
-                  // empty cells (vibrating bar, rotating disk).
-                  for (unsigned int e = e0; e < e1; ++e)
-                    {
-                      const unsigned int i = shape_node[e];
-                      const double       w = shape_value[e] * m;
-                      local_mass[i] += w;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        local_momentum[d][i] += w * v[d];
-                    }
-                  continue;
-                }
               const double J =
                 determinant(layout.get_matrix(p, layout.deformation_gradient));
               const double          volume = p[layout.reference_volume] * J;
@@ -499,9 +499,7 @@ namespace scarp
                     {
                       momentum[d].local_element(local_ptr[i]) +=
                         local_momentum[d][i];
-                      if (!momentum_only)
-                        force[d].local_element(local_ptr[i]) +=
-                          local_force[d][i];
+                      force[d].local_element(local_ptr[i]) += local_force[d][i];
                       if (with_body)
                         body_force_nodal[d].local_element(local_ptr[i]) +=
                           local_body[d][i];
@@ -523,8 +521,7 @@ namespace scarp
           for (unsigned int d = 0; d < dim; ++d)
             {
               distribute(local_momentum[d], momentum[d]);
-              if (!momentum_only)
-                distribute(local_force[d], force[d]);
+              distribute(local_force[d], force[d]);
               if (with_body)
                 distribute(local_body[d], body_force_nodal[d]);
             }
@@ -533,9 +530,8 @@ namespace scarp
       for (unsigned int d = 0; d < dim; ++d)
         {
           sums.push_back(&momentum[d]);
-          if (!momentum_only)
-            sums.push_back(&force[d]);
-          if (body_force && !momentum_only)
+          sums.push_back(&force[d]);
+          if (body_force)
             sums.push_back(&body_force_nodal[d]);
         }
       compress_add(sums);
@@ -640,10 +636,13 @@ namespace scarp
     void
     MpmTransfer<dim>::remap_momentum(StepReport &report)
     {
-      auto start = Clock::now();
-      particles_to_grid(Tensor<1, dim>(), /*momentum_only=*/true);
-      times.p2g += seconds_since(start);
-      start                      = Clock::now();
+      // The momentum of the new point velocities was gathered by the
+      // kinematic sweep of grid_to_particles(); the mass is this step's.
+      const auto            start = Clock::now();
+      std::vector<Vector *> sums;
+      for (unsigned int d = 0; d < dim; ++d)
+        sums.push_back(&momentum[d]);
+      compress_add(sums);
       const unsigned int n_owned = mass.locally_owned_size();
       for (unsigned int k = 0; k < n_owned; ++k)
         {
@@ -659,11 +658,10 @@ namespace scarp
       // counted in the solve already.
       (void)report;
       grid.boundary_conditions().apply(mass, ptr);
-      // The P2G of the remap left the mass without its ghosts.
       std::vector<Vector *> remapped;
       for (unsigned int d = 0; d < dim; ++d)
         remapped.push_back(&velocity_remapped[d]);
-      distribute_and_update_ghosts(remapped, {&mass});
+      distribute_and_update_ghosts(remapped, {});
       times.grid_update += seconds_since(start);
     }
 
@@ -719,7 +717,8 @@ namespace scarp
       const std::array<Vector, dim>      &stress_velocity,
       StepReport                         &report,
       DamagePoints<dim>                  *damage_points,
-      const Tensor<1, dim>               &gravity)
+      const Tensor<1, dim>               &gravity,
+      const bool                          gather_momentum)
     {
       auto                   &pool   = particle_handler.get_property_pool();
       unsigned int            k      = 0; // point counter
@@ -735,6 +734,21 @@ namespace scarp
 
       const bool f_bar =
         parameters.volumetric_averaging == VolumetricAveraging::f_bar;
+      // The MUSL remap's P2G of the new point velocities (remap_momentum()),
+      // made while each point's velocity and shape functions are at hand:
+      // the sums, and their order, of a P2G of m v alone, point by point
+      // and cell by cell. Without the affine term also with APIC: C = grad
+      // v_grid^{n+1} is unbounded next to a node of tiny mass (grad S_i
+      // does not vanish with S_i); mapped here it would make the stress
+      // velocity unbounded too, and APIC blew up as soon as points crossed
+      // into empty cells (vibrating bar, rotating disk).
+      const bool gather = update_positions_and_velocities && gather_momentum;
+      if (gather)
+        for (unsigned int d = 0; d < dim; ++d)
+          momentum[d] = 0;
+      const bool gather_directly =
+        parameters.shape_functions == ShapeFunctions::gimp ||
+        grid.constraints().n_constraints() == 0;
       // Velocity gradient of a point from its shape entries [e0, e1).
       const auto velocity_gradient = [&](const unsigned int e0,
                                          const unsigned int e1) {
@@ -770,6 +784,8 @@ namespace scarp
           v_old.resize(n);
           v_stress.resize(n);
           empty.resize(n);
+          if (gather)
+            local_sums.assign(dim * n, 0.);
           // A node no point gives mass to (a point on a cell edge has zero
           // weight but a non-zero gradient there) knows no velocity; it takes
           // part in gradients with the point's own interpolated velocity,
@@ -856,6 +872,9 @@ namespace scarp
           for (unsigned int q = occupied.point_begin; q < occupied.point_end;
                ++q)
             {
+              prefetch_record(point_properties,
+                              q + prefetch_distance,
+                              layout.n_properties());
               const unsigned int handle = point_handle[q];
               double            *p      = point_properties[q];
               const auto        &xi     = pool.get_reference_location(handle);
@@ -892,6 +911,17 @@ namespace scarp
                     v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
                         (1. - alpha) * v_grid;
                   layout.set_vector(p, layout.velocity, v);
+                  if (gather)
+                    {
+                      const double m = p[layout.mass];
+                      for (unsigned int e = e0; e < e1; ++e)
+                        {
+                          const unsigned int i = shape_node[e];
+                          const double       w = shape_value[e] * m;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            local_sums[d * n + i] += w * v[d];
+                        }
+                    }
                   // What the PIC share (APIC: the grid velocity) took from
                   // the FLIP update (doc/user_guide.md, energy balance).
                   report.transfer_dissipation +=
@@ -981,20 +1011,42 @@ namespace scarp
 
                   MaterialScratch &b =
                     batches[static_cast<unsigned int>(p[layout.material_id])];
-                  b.delta_F.push_back(embed<dim>(dF, 1.));
-                  b.strain_increment.push_back(
-                    embed<dim>(Tensor<2, dim>(dt * symmetrize(L)), 0.));
-                  b.F.push_back(embed<dim>(F, 1.));
-                  b.state.push_back(p + layout.state);
-                  b.stress.push_back(sigma);
-                  b.properties.push_back(p);
-                  b.position.push_back(pool.get_location(handle));
-                  b.id.push_back(pool.get_id(handle));
+                  const unsigned int j = b.append();
+                  b.delta_F[j]         = embed<dim>(dF, 1.);
+                  b.strain_increment[j] =
+                    embed<dim>(Tensor<2, dim>(dt * symmetrize(L)), 0.);
+                  b.F[j]          = embed<dim>(F, 1.);
+                  b.state[j]      = p + layout.state;
+                  b.stress[j]     = sigma;
+                  b.properties[j] = p;
+                  b.position[j]   = pool.get_location(handle);
+                  b.id[j]         = pool.get_id(handle);
                 }
             }
 
           if (update_stress && cell_material == -2)
             update_pending(dt, inelastic, report, damage_points, gravity);
+          if (gather && gather_directly)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                momentum[d].local_element(local_ptr[i]) +=
+                  local_sums[d * n + i];
+          else if (gather)
+            {
+              // Q1 with hanging nodes: through the constraints.
+              const std::vector<types::global_dof_index> dofs(dof_ptr,
+                                                              dof_ptr + n);
+              dealii::Vector<double>                     local(n);
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  std::copy(local_sums.data() + d * n,
+                            local_sums.data() + (d + 1) * n,
+                            local.begin());
+                  grid.constraints().distribute_local_to_global(local,
+                                                                dofs,
+                                                                momentum[d]);
+                }
+            }
         }
       if (update_stress && n_pending > 0)
         update_pending(dt, inelastic, report, damage_points, gravity);
@@ -1014,13 +1066,12 @@ namespace scarp
       for (unsigned int mat = 0; mat < batches.size(); ++mat)
         {
           MaterialScratch &b = batches[mat];
-          if (b.F.empty())
+          if (b.n == 0)
             continue;
-          const materials::Material &material = *materials[mat];
-          const double removal_stretch        = material.removal_stretch();
-          b.stored_energy.resize(b.F.size());
+          const materials::Material &material      = *materials[mat];
+          const double             removal_stretch = material.removal_stretch();
           materials::MaterialBatch batch;
-          batch.n             = b.F.size();
+          batch.n             = b.n;
           batch.dt            = dt;
           batch.delta_F       = b.delta_F.data();
           batch.F             = b.F.data();
@@ -1030,7 +1081,6 @@ namespace scarp
           batch.inelastic     = inelastic;
           if (material.has_damage())
             {
-              b.driver.resize(b.F.size());
               batch.damage_driver = b.driver.data();
             }
           try
@@ -1045,9 +1095,9 @@ namespace scarp
               // garbage state) is reported like a non-finite stress:
               // the run then stops on every rank with the message.
               report.n_not_finite += batch.n;
-              for (auto &s : b.stress)
-                s = SymmetricTensor<2, 3>();
-              if (!report.has_offender && !b.position.empty())
+              for (unsigned int k = 0; k < b.n; ++k)
+                b.stress[k] = SymmetricTensor<2, 3>();
+              if (!report.has_offender)
                 {
                   report.has_offender = true;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -1414,7 +1464,7 @@ namespace scarp
       compute_shapes();
       times.shape_functions += seconds_since(start);
       start = Clock::now();
-      particles_to_grid(gravity, false);
+      particles_to_grid(gravity);
       times.p2g += seconds_since(start);
       start = Clock::now();
       solve_grid(dt, damping, report);
@@ -1423,7 +1473,8 @@ namespace scarp
       const auto g2p = [&](const bool                     kinematics,
                            const bool                     stress,
                            const std::array<Vector, dim> &stress_velocity,
-                           DamagePoints<dim>             *points) {
+                           DamagePoints<dim>             *points,
+                           const bool gather_momentum = false) {
         const double constitutive = times.constitutive_update;
         const auto   g2p_start    = Clock::now();
         grid_to_particles(dt,
@@ -1433,7 +1484,8 @@ namespace scarp
                           stress_velocity,
                           report,
                           points,
-                          gravity);
+                          gravity,
+                          gather_momentum);
         times.g2p +=
           seconds_since(g2p_start) - (times.constitutive_update - constitutive);
       };
@@ -1441,7 +1493,7 @@ namespace scarp
         g2p(true, true, velocity_new, damage_points);
       else
         {
-          g2p(true, false, velocity_new, nullptr);
+          g2p(true, false, velocity_new, nullptr, true);
           remap_momentum(report);
           g2p(false, true, velocity_remapped, damage_points);
         }

@@ -200,8 +200,11 @@ namespace scarp
         occupied_points;
 
       void
-      particles_to_grid(const Tensor<1, dim> &gravity,
-                        const bool            momentum_only);
+      particles_to_grid(const Tensor<1, dim> &gravity);
+      /// G2P: the kinematic update and/or the stress update of the points.
+      /// With @p gather_momentum the kinematic update also gathers the
+      /// momentum of the new point velocities on the grid, the P2G of the
+      /// MUSL remap (remap_momentum()).
       void
       grid_to_particles(const double dt,
                         const bool   update_positions_and_velocities,
@@ -210,7 +213,8 @@ namespace scarp
                         const std::array<Vector, dim>      &stress_velocity,
                         StepReport                         &report,
                         DamagePoints<dim>                  *damage_points,
-                        const Tensor<1, dim>               &gravity);
+                        const Tensor<1, dim>               &gravity,
+                        const bool                          gather_momentum);
       void
       compute_node_cutoffs();
       /// Fill the shape cache for the points of the occupied cells.
@@ -226,6 +230,8 @@ namespace scarp
                    const unsigned int    at);
       double
       solve_grid(const double dt, const Damping &damping, StepReport &report);
+      /// MUSL: the remapped grid velocity from the momentum that
+      /// grid_to_particles() gathered.
       void
       remap_momentum(StepReport &report);
       void
@@ -335,6 +341,9 @@ namespace scarp
       /// between calls so that its storage is not allocated again.
       struct MaterialScratch
       {
+        /// Points held; the arrays are longer (they only grow, so that the
+        /// sweep writes by index without a check per array).
+        unsigned int                       n = 0;
         std::vector<Tensor<2, 3>>          delta_F, F, strain_increment;
         std::vector<double *>              state;
         std::vector<SymmetricTensor<2, 3>> stress;
@@ -342,17 +351,33 @@ namespace scarp
         std::vector<double *>              properties;
         std::vector<Point<dim>>            position;
         std::vector<types::particle_index> id;
+        /// The index of a new point, the arrays grown if full.
+        unsigned int
+        append()
+        {
+          if (n == delta_F.size())
+            grow();
+          return n++;
+        }
+        void
+        grow()
+        {
+          const std::size_t size = std::max<std::size_t>(2 * n, 512);
+          delta_F.resize(size);
+          F.resize(size);
+          strain_increment.resize(size);
+          state.resize(size);
+          stress.resize(size);
+          stored_energy.resize(size);
+          driver.resize(size);
+          properties.resize(size);
+          position.resize(size);
+          id.resize(size);
+        }
         void
         clear()
         {
-          delta_F.clear();
-          F.clear();
-          strain_increment.clear();
-          state.clear();
-          stress.clear();
-          properties.clear();
-          position.clear();
-          id.clear();
+          n = 0;
         }
       };
       std::vector<MaterialScratch> material_scratch;
