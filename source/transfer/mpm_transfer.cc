@@ -806,13 +806,19 @@ namespace scarp
           // of the bookings below and of the non-local step is that of
           // cell-by-cell updates); a cell of several materials is updated
           // on its own, material by material.
-          int cell_material = -1;
+          // With one material in the scene there is nothing to read (the
+          // read was the first touch of each point's record in this sweep,
+          // a wait on memory per point).
+          int cell_material = materials.size() == 1 ? 0 : -1;
           if (update_stress)
             {
               for (unsigned int q = occupied.point_begin;
-                   q < occupied.point_end;
+                   q < occupied.point_end && materials.size() > 1;
                    ++q)
                 {
+                  prefetch_record(point_properties,
+                                  q + prefetch_distance,
+                                  layout.n_properties());
                   const int m =
                     static_cast<int>(point_properties[q][layout.material_id]);
                   if (cell_material == -1)
