@@ -56,6 +56,20 @@ namespace scarp
             __builtin_prefetch(records[ahead] + i, 1, 3);
       }
 
+      /// sigma : e for e with zero entries out of the dim x dim block: the
+      /// sum of scalar_product() of the embedded e, in its order, without
+      /// its zero terms (the same number).
+      template <int dim>
+      double
+      stress_power(const SymmetricTensor<2, 3> &sigma, const Tensor<2, dim> &e)
+      {
+        double s = 0.;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            s += sigma[i][j] * e[i][j];
+        return s;
+      }
+
       template <int dim>
       Tensor<1, dim>
       stress_times(const SymmetricTensor<2, 3> &s, const Tensor<1, dim> &g)
@@ -1017,16 +1031,15 @@ namespace scarp
 
                   MaterialScratch &b =
                     batches[static_cast<unsigned int>(p[layout.material_id])];
-                  const unsigned int j = b.append();
-                  b.delta_F[j]         = embed<dim>(dF, 1.);
-                  b.strain_increment[j] =
-                    embed<dim>(Tensor<2, dim>(dt * symmetrize(L)), 0.);
-                  b.F[j]          = embed<dim>(F, 1.);
-                  b.state[j]      = p + layout.state;
-                  b.stress[j]     = sigma;
-                  b.properties[j] = p;
-                  b.position[j]   = pool.get_location(handle);
-                  b.id[j]         = pool.get_id(handle);
+                  const unsigned int j  = b.append();
+                  b.delta_F[j]          = embed<dim>(dF, 1.);
+                  b.strain_increment[j] = Tensor<2, dim>(dt * symmetrize(L));
+                  b.F[j]                = embed<dim>(F, 1.);
+                  b.state[j]            = p + layout.state;
+                  b.stress[j]           = sigma;
+                  b.properties[j]       = p;
+                  b.position[j]         = pool.get_location(handle);
+                  b.id[j]               = pool.get_id(handle);
                 }
             }
 
@@ -1119,7 +1132,7 @@ namespace scarp
               const double V0 = p[layout.reference_volume];
               // Second half of the trapezoidal stress power.
               report.internal_work +=
-                0.5 * V0 * J * scalar_product(sigma, b.strain_increment[k]);
+                0.5 * V0 * J * stress_power(sigma, b.strain_increment[k]);
               report.stored_energy += V0 * b.stored_energy[k];
               if (!std::isfinite(sigma.norm()))
                 {

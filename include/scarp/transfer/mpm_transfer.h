@@ -343,8 +343,11 @@ namespace scarp
       {
         /// Points held; the arrays are longer (they only grow, so that the
         /// sweep writes by index without a check per array).
-        unsigned int                       n = 0;
-        std::vector<Tensor<2, 3>>          delta_F, F, strain_increment;
+        unsigned int              n = 0;
+        std::vector<Tensor<2, 3>> delta_F, F;
+        /// dt sym(L) of the dim x dim velocity gradient (for the stress
+        /// power only: the out-of-plane entries are zero).
+        std::vector<Tensor<2, dim>>        strain_increment;
         std::vector<double *>              state;
         std::vector<SymmetricTensor<2, 3>> stress;
         std::vector<double>                stored_energy, driver;
