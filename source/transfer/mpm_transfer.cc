@@ -382,16 +382,11 @@ namespace scarp
           if (body_force)
             body_force_nodal[d] = 0;
         }
-      const auto  &pool = particle_handler.get_property_pool();
-      const bool   apic = layout.has_affine;
-      unsigned int k    = 0; // point counter
-      // GIMP patch nodes are unconstrained (the patch resolved the hanging
-      // ones); Q1 cells on a mesh with hanging nodes go through the
-      // constraints.
-      const bool add_directly =
-        parameters.shape_functions == ShapeFunctions::gimp ||
-        grid.constraints().n_constraints() == 0;
-      const bool f_bar =
+      const auto  &pool         = particle_handler.get_property_pool();
+      const bool   apic         = layout.has_affine;
+      unsigned int k            = 0; // point counter
+      const bool   add_directly = cell_sums_add_directly();
+      const bool   f_bar =
         parameters.volumetric_averaging == VolumetricAveraging::f_bar;
 
       for (const OccupiedCell &occupied : occupied_cells)
@@ -521,24 +516,19 @@ namespace scarp
                 }
               continue;
             }
-          // Q1 with hanging nodes: through the constraints.
-          const std::vector<types::global_dof_index> dofs(
-            node_dof.begin() + occupied.node_begin,
-            node_dof.begin() + occupied.node_begin + n);
-          dealii::Vector<double> local(n);
-          const auto            &constraints = grid.constraints();
-          const auto distribute = [&](const double *values, Vector &global) {
-            std::copy(values, values + n, local.begin());
-            constraints.distribute_local_to_global(local, dofs, global);
-          };
-          distribute(local_mass, mass);
+          std::vector<const double *> values  = {local_mass};
+          std::vector<Vector *>       globals = {&mass};
           for (unsigned int d = 0; d < dim; ++d)
             {
-              distribute(local_momentum[d], momentum[d]);
-              distribute(local_force[d], force[d]);
+              values.insert(values.end(), {local_momentum[d], local_force[d]});
+              globals.insert(globals.end(), {&momentum[d], &force[d]});
               if (with_body)
-                distribute(local_body[d], body_force_nodal[d]);
+                {
+                  values.push_back(local_body[d]);
+                  globals.push_back(&body_force_nodal[d]);
+                }
             }
+          distribute_cell_sums(occupied, values, globals);
         }
       std::vector<Vector *> sums = {&mass};
       for (unsigned int d = 0; d < dim; ++d)
@@ -549,6 +539,40 @@ namespace scarp
             sums.push_back(&body_force_nodal[d]);
         }
       compress_add(sums);
+    }
+
+
+    template <int dim>
+    bool
+    MpmTransfer<dim>::cell_sums_add_directly() const
+    {
+      // GIMP patch nodes are unconstrained (the patch resolved the hanging
+      // ones); Q1 cells on a mesh with hanging nodes go through the
+      // constraints.
+      return parameters.shape_functions == ShapeFunctions::gimp ||
+             grid.constraints().n_constraints() == 0;
+    }
+
+
+    template <int dim>
+    void
+    MpmTransfer<dim>::distribute_cell_sums(
+      const OccupiedCell                &occupied,
+      const std::vector<const double *> &values,
+      const std::vector<Vector *>       &globals) const
+    {
+      const unsigned int                         n = occupied.n_nodes;
+      const std::vector<types::global_dof_index> dofs(
+        node_dof.begin() + occupied.node_begin,
+        node_dof.begin() + occupied.node_begin + n);
+      dealii::Vector<double> local(n);
+      for (unsigned int c = 0; c < values.size(); ++c)
+        {
+          std::copy(values[c], values[c] + n, local.begin());
+          grid.constraints().distribute_local_to_global(local,
+                                                        dofs,
+                                                        *globals[c]);
+        }
     }
 
 
@@ -760,9 +784,7 @@ namespace scarp
       if (gather)
         for (unsigned int d = 0; d < dim; ++d)
           momentum[d] = 0;
-      const bool gather_directly =
-        parameters.shape_functions == ShapeFunctions::gimp ||
-        grid.constraints().n_constraints() == 0;
+      const bool gather_directly = cell_sums_add_directly();
       // Velocity gradient of a point from its shape entries [e0, e1).
       const auto velocity_gradient = [&](const unsigned int e0,
                                          const unsigned int e1) {
@@ -1052,19 +1074,14 @@ namespace scarp
                   local_sums[d * n + i];
           else if (gather)
             {
-              // Q1 with hanging nodes: through the constraints.
-              const std::vector<types::global_dof_index> dofs(dof_ptr,
-                                                              dof_ptr + n);
-              dealii::Vector<double>                     local(n);
+              std::vector<const double *> values;
+              std::vector<Vector *>       globals;
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  std::copy(local_sums.data() + d * n,
-                            local_sums.data() + (d + 1) * n,
-                            local.begin());
-                  grid.constraints().distribute_local_to_global(local,
-                                                                dofs,
-                                                                momentum[d]);
+                  values.push_back(local_sums.data() + d * n);
+                  globals.push_back(&momentum[d]);
                 }
+              distribute_cell_sums(occupied, values, globals);
             }
         }
       if (update_stress && n_pending > 0)

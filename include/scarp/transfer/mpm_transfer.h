@@ -282,6 +282,17 @@ namespace scarp
         /// point_properties.
         unsigned int point_begin, point_end;
       };
+      /// Whether the nodal sums of a cell go straight into the grid vectors
+      /// (GIMP, or no hanging nodes) or through distribute_cell_sums().
+      bool
+      cell_sums_add_directly() const;
+      /// Add the sums @p values of the nodes of @p occupied (n_nodes each)
+      /// to @p globals, value c to vector c, through the hanging-node
+      /// constraints (Q1 on a refined mesh).
+      void
+      distribute_cell_sums(const OccupiedCell                &occupied,
+                           const std::vector<const double *> &values,
+                           const std::vector<Vector *>       &globals) const;
       std::vector<OccupiedCell> occupied_cells;
       /// The list of the step before and its point handles, kept while
       /// the new one is made.
