@@ -29,18 +29,20 @@ namespace scarp
         return std::chrono::duration<double>(Clock::now() - start).count();
       }
 
-      /// The 3x3 embedding of a dim x dim tensor (plane strain: zz = 1).
+      /// Write the 3x3 embedding of a dim x dim tensor into @p b (plane
+      /// strain: zz = 1), entry by entry: a temporary returned by value was
+      /// built on the stack in overlapping pieces and read back whole, a
+      /// failed store-to-load forwarding per tensor (perf: a tenth of the
+      /// samples of grid_to_particles in the main job).
       template <int dim>
-      Tensor<2, 3>
-      embed(const Tensor<2, dim> &a, const double zz)
+      void
+      embed_into(Tensor<2, 3> &b, const Tensor<2, dim> &a, const double zz)
       {
-        Tensor<2, 3> b;
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = 0; j < dim; ++j)
-            b[i][j] = a[i][j];
-        for (unsigned int i = dim; i < 3; ++i)
-          b[i][i] = zz;
-        return b;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            b[i][j] = (i < dim && j < dim) ? a[i % dim][j % dim]
+                      : (i == j)           ? zz
+                                           : 0.;
       }
 
       /// Ask for the property record of the point @p ahead places on in
@@ -785,6 +787,13 @@ namespace scarp
         for (unsigned int d = 0; d < dim; ++d)
           momentum[d] = 0;
       const bool gather_directly = cell_sums_add_directly();
+      // Empty nodes enter the velocity gradients (stress) and APIC's affine
+      // matrix.
+      const bool need_empty =
+        update_stress || (apic && update_positions_and_velocities);
+      // Whether a node of the current cell is empty: nearly never, and then
+      // the sums need no test per entry.
+      bool cell_has_empty = false;
       // Velocity gradient of a point from its shape entries [e0, e1).
       const auto velocity_gradient = [&](const unsigned int e0,
                                          const unsigned int e1) {
@@ -792,8 +801,15 @@ namespace scarp
         for (unsigned int e = e0; e < e1; ++e)
           v_point += shape_value[e] * v_stress[shape_node[e]];
         Tensor<2, dim> L;
-        for (unsigned int e = e0; e < e1; ++e)
-          if (!empty[shape_node[e]])
+        if (cell_has_empty)
+          {
+            for (unsigned int e = e0; e < e1; ++e)
+              if (!empty[shape_node[e]])
+                L += outer_product(v_stress[shape_node[e]] - v_point,
+                                   shape_gradient[e]);
+          }
+        else // the same sums without a test per entry
+          for (unsigned int e = e0; e < e1; ++e)
             L += outer_product(v_stress[shape_node[e]] - v_point,
                                shape_gradient[e]);
         return L;
@@ -826,17 +842,29 @@ namespace scarp
           // weight but a non-zero gradient there) knows no velocity; it takes
           // part in gradients with the point's own interpolated velocity,
           // which keeps sum_i grad S_i = 0 and uniform motion strain-free.
-          for (unsigned int i = 0; i < n; ++i)
-            empty[i] =
-              mass.local_element(local_ptr[i]) == 0. &&
-              (patch || !grid.constraints().is_constrained(dof_ptr[i]));
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int d = 0; d < dim; ++d)
+          // Each sweep gathers only the nodal values it reads (MUSL: the
+          // kinematic sweep the new and old velocities, the stress sweep
+          // the remapped ones).
+          cell_has_empty = false;
+          if (need_empty)
+            for (unsigned int i = 0; i < n; ++i)
               {
-                v_new[i][d]    = velocity_new[d].local_element(local_ptr[i]);
-                v_old[i][d]    = velocity_old[d].local_element(local_ptr[i]);
-                v_stress[i][d] = stress_velocity[d].local_element(local_ptr[i]);
+                empty[i] =
+                  mass.local_element(local_ptr[i]) == 0. &&
+                  (patch || !grid.constraints().is_constrained(dof_ptr[i]));
+                cell_has_empty = cell_has_empty || empty[i];
               }
+          if (update_positions_and_velocities)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  v_new[i][d] = velocity_new[d].local_element(local_ptr[i]);
+                  v_old[i][d] = velocity_old[d].local_element(local_ptr[i]);
+                }
+          if (update_stress)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                v_stress[i][d] = stress_velocity[d].local_element(local_ptr[i]);
           // The constitutive updates of consecutive cells of one material
           // go together, in the order of the cells (so the points' order
           // of the bookings below and of the non-local step is that of
@@ -1053,15 +1081,15 @@ namespace scarp
 
                   MaterialScratch &b =
                     batches[static_cast<unsigned int>(p[layout.material_id])];
-                  const unsigned int j  = b.append();
-                  b.delta_F[j]          = embed<dim>(dF, 1.);
+                  const unsigned int j = b.append();
+                  embed_into<dim>(b.delta_F[j], dF, 1.);
                   b.strain_increment[j] = Tensor<2, dim>(dt * symmetrize(L));
-                  b.F[j]                = embed<dim>(F, 1.);
-                  b.state[j]            = p + layout.state;
-                  b.stress[j]           = sigma;
-                  b.properties[j]       = p;
-                  b.position[j]         = pool.get_location(handle);
-                  b.id[j]               = pool.get_id(handle);
+                  embed_into<dim>(b.F[j], F, 1.);
+                  b.state[j]      = p + layout.state;
+                  b.stress[j]     = sigma;
+                  b.properties[j] = p;
+                  b.position[j]   = pool.get_location(handle);
+                  b.id[j]         = pool.get_id(handle);
                 }
             }
 
