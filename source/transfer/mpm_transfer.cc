@@ -748,48 +748,6 @@ namespace scarp
 
 
     template <int dim>
-    unsigned int
-    MpmTransfer<dim>::interleave_node_values(
-      const bool                     kinematics,
-      const bool                     stress,
-      const std::array<Vector, dim> &stress_velocity)
-    {
-      // Per node: [v_new, v_old] with kinematics, then [v, empty]; the
-      // empty flag is always there (APIC's kinematic sweep reads it too).
-      const unsigned int stride = (kinematics ? 2 * dim : 0) + dim + 1;
-      const unsigned int n_local =
-        mass.get_partitioner()->locally_owned_size() +
-        mass.get_partitioner()->n_ghost_indices();
-      if (node_values.size() < std::size_t(stride) * n_local)
-        node_values.resize(std::size_t(stride) * n_local);
-      const bool gimp = parameters.shape_functions == ShapeFunctions::gimp;
-      const Utilities::MPI::Partitioner &partitioner = *mass.get_partitioner();
-      double                            *node        = node_values.data();
-      for (unsigned int i = 0; i < n_local; ++i, node += stride)
-        {
-          unsigned int c = 0;
-          if (kinematics)
-            {
-              for (unsigned int d = 0; d < dim; ++d)
-                node[c++] = velocity_new[d].local_element(i);
-              for (unsigned int d = 0; d < dim; ++d)
-                node[c++] = velocity_old[d].local_element(i);
-            }
-          for (unsigned int d = 0; d < dim; ++d)
-            node[c++] = stress ? stress_velocity[d].local_element(i) : 0.;
-          // A node no point gives mass to, unless a Q1 node that hangs
-          // (its velocity is its masters').
-          node[c] = (mass.local_element(i) == 0. &&
-                     (gimp || !grid.constraints().is_constrained(
-                                partitioner.local_to_global(i))))
-                      ? 1.
-                      : 0.;
-        }
-      return stride;
-    }
-
-
-    template <int dim>
     void
     MpmTransfer<dim>::grid_to_particles(
       const double                        dt,
@@ -833,13 +791,6 @@ namespace scarp
       // matrix.
       const bool need_empty =
         update_stress || (apic && update_positions_and_velocities);
-      const unsigned int stride =
-        interleave_node_values(update_positions_and_velocities,
-                               update_stress,
-                               stress_velocity);
-      const unsigned int stress_offset =
-        update_positions_and_velocities ? 2 * dim : 0;
-      const unsigned int empty_offset = stress_offset + dim;
       // Whether a node of the current cell is empty: nearly never, and then
       // the sums need no test per entry.
       bool cell_has_empty = false;
@@ -873,11 +824,14 @@ namespace scarp
 
       for (const OccupiedCell &occupied : occupied_cells)
         {
-          const double        h  = occupied.h;
-          const Point<dim>   &x0 = occupied.x0;
-          const unsigned int  n  = occupied.n_nodes;
+          const double        h     = occupied.h;
+          const Point<dim>   &x0    = occupied.x0;
+          const auto         *patch = occupied.patch;
+          const unsigned int  n     = occupied.n_nodes;
           const unsigned int *local_ptr =
             node_local.data() + occupied.node_begin;
+          const types::global_dof_index *dof_ptr =
+            node_dof.data() + occupied.node_begin;
           v_new.resize(n);
           v_old.resize(n);
           v_stress.resize(n);
@@ -892,25 +846,25 @@ namespace scarp
           // kinematic sweep the new and old velocities, the stress sweep
           // the remapped ones).
           cell_has_empty = false;
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              const double *node =
-                node_values.data() + std::size_t(stride) * local_ptr[i];
-              if (update_positions_and_velocities)
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    v_new[i][d] = node[d];
-                    v_old[i][d] = node[dim + d];
-                  }
-              if (update_stress)
-                for (unsigned int d = 0; d < dim; ++d)
-                  v_stress[i][d] = node[stress_offset + d];
-              if (need_empty)
+          if (need_empty)
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                empty[i] =
+                  mass.local_element(local_ptr[i]) == 0. &&
+                  (patch || !grid.constraints().is_constrained(dof_ptr[i]));
+                cell_has_empty = cell_has_empty || empty[i];
+              }
+          if (update_positions_and_velocities)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
                 {
-                  empty[i]       = node[empty_offset] != 0.;
-                  cell_has_empty = cell_has_empty || empty[i];
+                  v_new[i][d] = velocity_new[d].local_element(local_ptr[i]);
+                  v_old[i][d] = velocity_old[d].local_element(local_ptr[i]);
                 }
-            }
+          if (update_stress)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < dim; ++d)
+                v_stress[i][d] = stress_velocity[d].local_element(local_ptr[i]);
           // The constitutive updates of consecutive cells of one material
           // go together, in the order of the cells (so the points' order
           // of the bookings below and of the non-local step is that of

@@ -425,16 +425,6 @@ namespace scarp
       std::vector<double>         local_sums;
       std::vector<Tensor<1, dim>> local_v_new, local_v_old, local_v_stress;
       std::vector<char>           local_empty;
-      /// The nodal values a G2P sweep reads, interleaved per local node
-      /// (owned, then ghost): one cache line per node in the per-cell
-      /// gathers instead of one per vector. Kinematic sweep: v_new, v_old;
-      /// stress sweep: the stress velocity and 1 for an empty node (else 0).
-      std::vector<double> node_values;
-      /// Fill node_values for a sweep; returns its stride per node.
-      unsigned int
-      interleave_node_values(const bool                     kinematics,
-                             const bool                     stress,
-                             const std::array<Vector, dim> &stress_velocity);
 
       /// Non-zero shape functions of every point of the occupied cells (in
       /// the order of occupied_cells and their points) for this step:
