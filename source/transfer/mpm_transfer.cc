@@ -674,7 +674,7 @@ namespace scarp
 
     template <int dim>
     void
-    MpmTransfer<dim>::remap_momentum(StepReport &report)
+    MpmTransfer<dim>::remap_momentum()
     {
       // The momentum of the new point velocities was gathered by the
       // kinematic sweep of grid_to_particles(); the mass is this step's.
@@ -696,7 +696,6 @@ namespace scarp
         ptr[d] = &velocity_remapped[d];
       // The boundary acts on the remapped velocity too; what it removes was
       // counted in the solve already.
-      (void)report;
       grid.boundary_conditions().apply(mass, ptr);
       std::vector<Vector *> remapped;
       for (unsigned int d = 0; d < dim; ++d)
@@ -1558,7 +1557,7 @@ namespace scarp
       else
         {
           g2p(true, false, velocity_new, nullptr, true);
-          remap_momentum(report);
+          remap_momentum();
           g2p(false, true, velocity_remapped, damage_points);
         }
       if (!removal_ids.empty())

@@ -233,7 +233,7 @@ namespace scarp
       /// MUSL: the remapped grid velocity from the momentum that
       /// grid_to_particles() gathered.
       void
-      remap_momentum(StepReport &report);
+      remap_momentum();
       void
       add_point_measures(const double         *p,
                          const Point<dim>     &x,
