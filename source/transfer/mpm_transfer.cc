@@ -793,25 +793,34 @@ namespace scarp
       // Whether a node of the current cell is empty: nearly never, and then
       // the sums need no test per entry.
       bool cell_has_empty = false;
+      // Gradient at a point, from its shape entries [e0, e1), of the nodal
+      // velocities v taken relative to the point's own v_point (empty nodes
+      // left out): the velocity gradient of the stress sweep and APIC's
+      // affine matrix.
+      const auto gradient_about = [&](const std::vector<Tensor<1, dim>> &v,
+                                      const Tensor<1, dim> &v_point,
+                                      const unsigned int    e0,
+                                      const unsigned int    e1) {
+        Tensor<2, dim> L;
+        if (cell_has_empty)
+          {
+            for (unsigned int e = e0; e < e1; ++e)
+              if (!empty[shape_node[e]])
+                L +=
+                  outer_product(v[shape_node[e]] - v_point, shape_gradient[e]);
+          }
+        else // the same sums without a test per entry
+          for (unsigned int e = e0; e < e1; ++e)
+            L += outer_product(v[shape_node[e]] - v_point, shape_gradient[e]);
+        return L;
+      };
       // Velocity gradient of a point from its shape entries [e0, e1).
       const auto velocity_gradient = [&](const unsigned int e0,
                                          const unsigned int e1) {
         Tensor<1, dim> v_point;
         for (unsigned int e = e0; e < e1; ++e)
           v_point += shape_value[e] * v_stress[shape_node[e]];
-        Tensor<2, dim> L;
-        if (cell_has_empty)
-          {
-            for (unsigned int e = e0; e < e1; ++e)
-              if (!empty[shape_node[e]])
-                L += outer_product(v_stress[shape_node[e]] - v_point,
-                                   shape_gradient[e]);
-          }
-        else // the same sums without a test per entry
-          for (unsigned int e = e0; e < e1; ++e)
-            L += outer_product(v_stress[shape_node[e]] - v_point,
-                               shape_gradient[e]);
-        return L;
+        return gradient_about(v_stress, v_point, e0, e1);
       };
       // Cayley (midpoint) increment: exactly a rotation when L is a spin,
       // so rigid rotation creates no stress.
@@ -968,13 +977,10 @@ namespace scarp
                     {
                       // The affine matrix: the gradient of the grid
                       // velocity at the point (APIC only).
-                      Tensor<2, dim> grad_v;
-                      for (unsigned int e = e0; e < e1; ++e)
-                        if (!empty[shape_node[e]])
-                          grad_v += outer_product(v_new[shape_node[e]] - v_grid,
-                                                  shape_gradient[e]);
                       v = v_grid;
-                      layout.set_matrix(p, layout.affine, grad_v);
+                      layout.set_matrix(p,
+                                        layout.affine,
+                                        gradient_about(v_new, v_grid, e0, e1));
                     }
                   else
                     v = alpha * (layout.get_vector(p, layout.velocity) + dv) +
