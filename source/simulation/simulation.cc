@@ -231,6 +231,7 @@ namespace scarp
       // The points in the handler's order for whoever reads them after the
       // run (particle_handler()).
       order_points();
+      gather_part_statistics();
       if (cliff && loop.failure.after_failure_taken && stop_after_failure)
         {
           // The debris is still moving: only the onset means something.
@@ -251,6 +252,7 @@ namespace scarp
           write_summary("completed");
         }
       timer.print_wall_time_statistics(communicator);
+      print_part_statistics();
       pcout << "Wall time " << format_seconds(wall_clock.wall_time()) << ", "
             << loop.step << " steps";
       if (first_step > 0)

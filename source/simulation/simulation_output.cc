@@ -179,6 +179,54 @@ namespace scarp
 
     template <int dim>
     void
+    Simulation<dim>::gather_part_statistics()
+    {
+      if (!mpm)
+        return;
+      const auto &t = mpm->part_times();
+      // Compute: the time of a rank's own work, its exchanges left out.
+      const double compute = t.shape_functions + t.p2g + t.grid_update + t.g2p +
+                             t.constitutive_update - t.exchange;
+      const std::vector<std::pair<std::string, double>> parts = {
+        {"shape functions", t.shape_functions},
+        {"P2G", t.p2g},
+        {"grid update", t.grid_update},
+        {"G2P", t.g2p},
+        {"constitutive update", t.constitutive_update},
+        {"exchange", t.exchange},
+        {"compute", compute}};
+      part_statistics.clear();
+      for (const auto &[name, seconds] : parts)
+        part_statistics.emplace_back(name,
+                                     Utilities::MPI::min_max_avg(seconds,
+                                                                 communicator));
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::print_part_statistics() const
+    {
+      if (part_statistics.empty())
+        return;
+      std::ostringstream table;
+      table << "Parts of the MPM step, wall s over the ranks (exchange: the "
+               "ghost rounds of P2G and the grid update, waits included)\n";
+      table << std::left << std::setw(22) << "  part" << std::right
+            << std::setw(10) << "min" << std::setw(6) << "rank" << std::setw(10)
+            << "avg" << std::setw(10) << "max" << std::setw(6) << "rank"
+            << "\n";
+      for (const auto &[name, m] : part_statistics)
+        table << "  " << std::left << std::setw(20) << name << std::right
+              << std::fixed << std::setprecision(2) << std::setw(10) << m.min
+              << std::setw(6) << m.min_index << std::setw(10) << m.avg
+              << std::setw(10) << m.max << std::setw(6) << m.max_index << "\n";
+      pcout << table.str() << std::flush;
+    }
+
+
+    template <int dim>
+    void
     Simulation<dim>::write_summary(const std::string &how_it_ended)
     {
       if (!outputs_enabled ||
@@ -249,7 +297,23 @@ namespace scarp
           parts.add("grid update", t.grid_update);
           parts.add("G2P", t.g2p);
           parts.add("constitutive update", t.constitutive_update);
+          parts.add("exchange", t.exchange);
           summary.add("mpm_step_parts", parts);
+        }
+      if (!part_statistics.empty())
+        {
+          postprocess::JsonObject over_ranks;
+          for (const auto &[name, m] : part_statistics)
+            {
+              postprocess::JsonObject entry;
+              entry.add("min", m.min);
+              entry.add("min_rank", double(m.min_index));
+              entry.add("avg", m.avg);
+              entry.add("max", m.max);
+              entry.add("max_rank", double(m.max_index));
+              over_ranks.add(name, entry);
+            }
+          summary.add("mpm_step_parts_over_ranks", over_ranks);
         }
       // A run that ends inside a stage (interrupted, or stopped by an
       // error) still reports what that stage has measured so far: its
@@ -352,6 +416,14 @@ namespace scarp
     Simulation<3>::print_progress(const transfer::StepReport &r,
                                   const Stage                &stage,
                                   const bool                  force);
+    template void
+    Simulation<2>::gather_part_statistics();
+    template void
+    Simulation<2>::print_part_statistics() const;
+    template void
+    Simulation<3>::print_part_statistics() const;
+    template void
+    Simulation<3>::gather_part_statistics();
     template void
     Simulation<2>::write_summary(const std::string &how_it_ended);
     template void

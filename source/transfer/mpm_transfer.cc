@@ -110,24 +110,30 @@ namespace scarp
 
       /// compress(add) of several vectors with one round of messages: all
       /// sends start before the first wait (each on its own channel, < 100).
+      /// Its wall time, the waits for the other ranks included, is added to
+      /// @p seconds.
       void
-      compress_add(const std::vector<Vector *> &vectors)
+      compress_add(const std::vector<Vector *> &vectors, double &seconds)
       {
+        const auto start = Clock::now();
         for (unsigned int c = 0; c < vectors.size(); ++c)
           vectors[c]->compress_start(c, VectorOperation::add);
         for (Vector *v : vectors)
           v->compress_finish(VectorOperation::add);
+        seconds += seconds_since(start);
       }
 
       /// update_ghost_values() of several vectors with one round of
-      /// messages.
+      /// messages; its wall time is added to @p seconds.
       void
-      update_ghosts(const std::vector<Vector *> &vectors)
+      update_ghosts(const std::vector<Vector *> &vectors, double &seconds)
       {
+        const auto start = Clock::now();
         for (unsigned int c = 0; c < vectors.size(); ++c)
           vectors[c]->update_ghost_values_start(c);
         for (Vector *v : vectors)
           v->update_ghost_values_finish();
+        seconds += seconds_since(start);
       }
     } // namespace
 
@@ -220,13 +226,13 @@ namespace scarp
       all.insert(all.end(), unconstrained.begin(), unconstrained.end());
       if (!any_constraints)
         {
-          update_ghosts(all);
+          update_ghosts(all, times.exchange);
           return;
         }
       // The sources first (ghost entries), then the owned hanging nodes in
       // the order and arithmetic of AffineConstraints::distribute() (the
       // same numbers to the bit), then the ghosts of those.
-      update_ghosts(vectors);
+      update_ghosts(vectors, times.exchange);
       for (Vector *v : vectors)
         for (unsigned int c = 0; c < constraint_local.size(); ++c)
           {
@@ -238,7 +244,7 @@ namespace scarp
                        constraint_entries[e].second;
             v->local_element(constraint_local[c]) = value;
           }
-      update_ghosts(all);
+      update_ghosts(all, times.exchange);
     }
 
 
@@ -540,7 +546,7 @@ namespace scarp
           if (body_force)
             sums.push_back(&body_force_nodal[d]);
         }
-      compress_add(sums);
+      compress_add(sums, times.exchange);
     }
 
 
@@ -682,7 +688,7 @@ namespace scarp
       std::vector<Vector *> sums;
       for (unsigned int d = 0; d < dim; ++d)
         sums.push_back(&momentum[d]);
-      compress_add(sums);
+      compress_add(sums, times.exchange);
       const unsigned int n_owned = mass.locally_owned_size();
       for (unsigned int k = 0; k < n_owned; ++k)
         {

@@ -7,8 +7,9 @@
 # promises, with the counts they must have: 400 points, 204 steps,
 # 400 x 204 = 81 600 point-steps, positive wall time and speed, memory
 # (where GNU time is installed), a
-# figure for every phase and part of the step, and a 2-rank efficiency line
-# per scene.
+# figure for every phase and part of the step (the exchange within P2G and
+# the grid update), the imbalance of the ranks' compute (1 on one rank, in
+# [1, 2) on two), and a 2-rank efficiency line per scene.
 # Arguments (scarp_add_script_test): scarp, source dir, run dir, ...
 set -euo pipefail
 scarp="$1"; src="$2"; run="$3"
@@ -25,7 +26,8 @@ seen = sorted((r["scene"], int(r["ranks"])) for r in rows)
 want = sorted((s, n) for s in ("column_Q1_400", "column_GIMP_400") for n in (1, 2))
 assert seen == want, f"runs {seen}, expected {want}"
 phases = [k for k in rows[0] if k.startswith("ns ")]
-assert len(phases) == 11, phases  # 6 phases of the run, 5 parts of the step
+# 6 phases of the run, 5 parts of the step and the exchange in two of them
+assert len(phases) == 12, phases
 for r in rows:
     what = f'{r["scene"]} on {r["ranks"]} rank(s)'
     assert int(r["points"]) == 400, (what, r["points"])
@@ -40,6 +42,15 @@ for r in rows:
         assert float(r["max_rss_MB"]) > 0 and float(r["bytes_per_point"]) > 0, what
     for key in phases:
         assert float(r[key]) >= 0, (what, key, r[key])
+    # The exchange is counted in P2G and the grid update.
+    assert float(r["ns exchange"]) <= float(r["ns P2G"]) + float(r["ns grid update"]), what
+    # The slowest rank's compute over the mean: 1 on one rank, at least 1
+    # on two (the mean of two is at most their largest).
+    imbalance = float(r["imbalance"])
+    if int(r["ranks"]) == 1:
+        assert imbalance == 1.0, (what, imbalance)
+    else:
+        assert 1.0 <= imbalance < 2.0, (what, imbalance)
 for scene in ("column_Q1_400", "column_GIMP_400"):
     assert any(line.startswith(scene) and "np 2:" in line
                for line in log.splitlines()), f"no 2-rank efficiency for {scene}"

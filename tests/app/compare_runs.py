@@ -106,7 +106,7 @@ def pvd(name):
 
 
 skipped = {"wall_time", "particle_steps_per_second", "wall_time_per_phase",
-           "mpm_step_parts",
+           "mpm_step_parts", "mpm_step_parts_over_ranks",
            "mpi_ranks", "nonlocal_lists", "load_rebalances"}
 
 

@@ -90,15 +90,36 @@ check(abs(x_end - 4) < 1e-6 * 4, f"block still slides at 4 m/s (mean {x_end:.9f}
 # at most the phase's wall time, and on one rank covers most of it (what is
 # left out is the reduction of the step report and the timer calls). Time
 # counted twice breaks the upper bound, most of the step untimed the lower.
+# The exchange is the part of P2G and the grid update spent in the ghost
+# rounds, counted in those two as well.
+five = ["shape functions", "P2G", "grid update", "G2P", "constitutive update"]
 for name in ("one", "two"):
     s = json.load(open(f"{name}/summary.json"))
-    parts = s.get("mpm_step_parts", {})
+    parts = dict(s.get("mpm_step_parts", {}))
+    exchange = parts.pop("exchange", -1.0)
     step = s["wall_time_per_phase"]["MPM step"]
     total = sum(parts.values())
-    check(sorted(parts) == sorted(["shape functions", "P2G", "grid update",
-                                   "G2P", "constitutive update"])
-          and min(parts.values()) >= 0,
+    check(sorted(parts) == sorted(five) and min(parts.values()) >= 0,
           f"{name}: the five parts of the MPM step, none negative")
+    check(0 <= exchange <= parts["P2G"] + parts["grid update"],
+          f"{name}: exchange {exchange:.4f} s within P2G and the grid update")
+    # Over the ranks: min <= avg <= max for every part, rank 0's own value
+    # among them, the ranks named those of the run, and compute = the five
+    # parts less the exchange (on one rank exactly rank 0's).
+    over = s.get("mpm_step_parts_over_ranks", {})
+    ranks = s["mpi_ranks"]
+    check(sorted(over) == sorted(five + ["exchange", "compute"]),
+          f"{name}: every part over the ranks ({sorted(over)})")
+    mine = dict(parts, exchange=exchange, compute=total - exchange)
+    for part, m in over.items():
+        eps = 1e-9 * max(1.0, abs(m["max"]))
+        check(m["min"] - eps <= m["avg"] <= m["max"] + eps
+              and m["min"] - eps <= mine[part] <= m["max"] + eps
+              and 0 <= m["min_rank"] < ranks and 0 <= m["max_rank"] < ranks,
+              f"{name}: {part} over the ranks {m}, rank 0's {mine[part]}")
+        if ranks == 1:
+            check(abs(m["avg"] - mine[part]) <= eps,
+                  f"{name}: {part} on one rank is rank 0's")
     # On 2 ranks the rank that writes the summary may hold few points and
     # wait for the other in the reduction: only the upper bound there.
     lower = 0.5 * step if name == "one" else 0.0

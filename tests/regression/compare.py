@@ -49,6 +49,7 @@ import sys
 
 # Machine- and partition-dependent summary entries: never compared.
 VOLATILE = {"wall_time", "wall_time_per_phase", "mpm_step_parts",
+            "mpm_step_parts_over_ranks",
             "particle_steps_per_second",
             "mpi_ranks", "load_rebalances", "nonlocal_lists"}
 # Columns of statistics.csv that are counts: compared exactly.

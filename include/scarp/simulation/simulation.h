@@ -2,6 +2,7 @@
 #define scarp_simulation_simulation_h
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/timer.h>
@@ -304,6 +305,16 @@ namespace scarp
       write_output();
       void
       write_summary(const std::string &how_it_ended);
+      /// Collective: the parts of the MPM step (MpmTransfer::PartTimes) as
+      /// min, mean and max over the ranks, into @p part_statistics for the
+      /// summary. A rank's compute time is the sum of the parts less its
+      /// exchange; the rank that waits least is the one the others wait
+      /// for.
+      void
+      gather_part_statistics();
+      /// The table of part_statistics on the console.
+      void
+      print_part_statistics() const;
       /// The record of the current stage in summary.json: how it ended,
       /// its start and end, the end of its mass scaling. A stage that has
       /// ended (@p wall_time given: its wall time) also has its steps, wall
@@ -433,9 +444,12 @@ namespace scarp
       postprocess::JsonObject                      stage_summaries;
       postprocess::CliffDiagnostics                cliff_diagnostics;
       postprocess::JsonObject                      cliff_summary;
-      const scenes::CliffProfile                  *cliff          = nullptr;
-      double                                       failure_speed  = 0.1;
-      double                                       failure_volume = 0;
+      /// Filled by gather_part_statistics() at the end of a run.
+      std::vector<std::pair<std::string, Utilities::MPI::MinMaxAvg>>
+                                  part_statistics;
+      const scenes::CliffProfile *cliff          = nullptr;
+      double                      failure_speed  = 0.1;
+      double                      failure_volume = 0;
       /// Snapshot "after_failure" this long after the onset [s] (< 0: none);
       /// compares failure surfaces across resolutions at one stage of motion.
       double after_failure_delay = 1.;

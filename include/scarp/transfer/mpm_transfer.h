@@ -157,12 +157,16 @@ namespace scarp
        * P2G (with the momentum P2G of the MUSL remap), the grid update (the
        * nodal solve, boundary conditions, constraints, ghost exchange, the
        * remapped velocities), G2P (velocities, positions, deformation and
-       * the bookkeeping of the points) and the constitutive updates.
+       * the bookkeeping of the points) and the constitutive updates;
+       * @p exchange is the part of P2G and the grid update spent in the
+       * ghost exchanges of nodal vectors (counted in those parts too). On
+       * several ranks it holds the waits for the slowest one: the rank
+       * with the least exchange time sets the pace.
        */
       struct PartTimes
       {
         double shape_functions = 0, p2g = 0, grid_update = 0, g2p = 0,
-               constitutive_update = 0;
+               constitutive_update = 0, exchange = 0;
       };
       const PartTimes &
       part_times() const
