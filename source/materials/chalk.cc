@@ -408,7 +408,7 @@ namespace scarp
           // Plastic dissipation with the stress that actually acts.
           state[plastic_dissipation] +=
             tau_d[0] * dep[0] + tau_d[1] * dep[1] + tau_d[2] * dep[2];
-          batch.stress[q] = compose(tau_d, e.vectors) / J;
+          compose_scaled_into(tau_d, e.vectors, 1. / J, batch.stress[q]);
           // The extent along each axis follows the normal part of the
           // increment, as the authors' domain lengths follow the grid
           // velocity at the domain's face midpoints.

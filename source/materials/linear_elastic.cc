@@ -47,7 +47,7 @@ namespace scarp
             elasticity.principal_stress(e.values);
           const double J = determinant(batch.F[q]);
           store_symmetric(compose(e.values, e.vectors), state);
-          batch.stress[q] = compose(tau, e.vectors) / J;
+          compose_scaled_into(tau, e.vectors, 1. / J, batch.stress[q]);
           if (batch.stored_energy != nullptr)
             batch.stored_energy[q] =
               0.5 * (tau[0] * e.values[0] + tau[1] * e.values[1] +

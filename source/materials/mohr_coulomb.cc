@@ -72,7 +72,10 @@ namespace scarp
               state[plastic_dissipation] += dissipation;
             }
           store_symmetric(compose(e.values, e.vectors), state + elastic_strain);
-          batch.stress[q] = compose(tau, e.vectors) / determinant(batch.F[q]);
+          compose_scaled_into(tau,
+                              e.vectors,
+                              1. / determinant(batch.F[q]),
+                              batch.stress[q]);
           if (batch.stored_energy != nullptr)
             batch.stored_energy[q] =
               0.5 * (tau[0] * e.values[0] + tau[1] * e.values[1] +

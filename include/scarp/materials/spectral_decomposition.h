@@ -110,24 +110,32 @@ namespace scarp
               c              = std::abs(bs) / n;
               s              = std::copysign(rs - hs, bs) / n;
             }
-          std::array<double, 3> values = {
-            {mean + radius, mean - radius, A[2][2]}};
-          std::array<Tensor<1, 3>, 3> vectors;
-          vectors[0][0]                     = c;
-          vectors[0][1]                     = s;
-          vectors[1][0]                     = -s;
-          vectors[1][1]                     = c;
-          vectors[2][2]                     = 1.;
-          std::array<unsigned int, 3> order = {{0, 1, 2}};
-          if (values[order[1]] < values[order[2]])
-            std::swap(order[1], order[2]);
-          if (values[order[0]] < values[order[1]])
-            std::swap(order[0], order[1]);
-          for (unsigned int i = 0; i < 3; ++i)
-            {
-              result.values[i]  = values[order[i]];
-              result.vectors[i] = vectors[order[i]];
-            }
+          // The in-plane pair is in order (radius >= 0); zz goes above,
+          // between or below it, ties as the sort by swaps put them. Each
+          // entry is written once into the result: picking whole vectors
+          // from a temporary array by index read back in 16-byte pieces
+          // what had been stored in 8-byte ones, a failed store-to-load
+          // forwarding per point (perf annotate of the elastic column).
+          const double upper = mean + radius, lower = mean - radius,
+                       zz            = A[2][2];
+          const unsigned int zz_slot = !(lower < zz) ? 2 : (upper < zz) ? 0 : 1;
+          const unsigned int upper_slot = zz_slot == 0 ? 1 : 0;
+          const unsigned int lower_slot = zz_slot == 2 ? 1 : 2;
+          result.values[upper_slot]     = upper;
+          result.values[lower_slot]     = lower;
+          result.values[zz_slot]        = zz;
+          Tensor<1, 3> &v_upper         = result.vectors[upper_slot];
+          Tensor<1, 3> &v_lower         = result.vectors[lower_slot];
+          Tensor<1, 3> &v_zz            = result.vectors[zz_slot];
+          v_upper[0]                    = c;
+          v_upper[1]                    = s;
+          v_upper[2]                    = 0.;
+          v_lower[0]                    = -s;
+          v_lower[1]                    = c;
+          v_lower[2]                    = 0.;
+          v_zz[0]                       = 0.;
+          v_zz[1]                       = 0.;
+          v_zz[2]                       = 1.;
           return result;
         }
       const auto eig = eigenvectors(A);
@@ -150,6 +158,29 @@ namespace scarp
           for (unsigned int j = i; j < 3; ++j)
             A[i][j] += values[k] * vectors[k][i] * vectors[k][j];
       return A;
+    }
+
+    /// compose(values, vectors) * scale written into @p out entry by entry:
+    /// the same sums and product as `compose(values, vectors) / J` with
+    /// scale = 1 / J (deal.II divides by multiplying with the inverse), but
+    /// without the temporary on the stack that the compiler stored in
+    /// 8-byte pieces and read back in 16-byte ones, a failed store-to-load
+    /// forwarding per point (perf annotate: a third of the samples of
+    /// LinearElastic::update on the elastic column).
+    inline void
+    compose_scaled_into(const std::array<double, 3>       &values,
+                        const std::array<Tensor<1, 3>, 3> &vectors,
+                        const double                       scale,
+                        SymmetricTensor<2, 3>             &out)
+    {
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          {
+            double a = 0.;
+            for (unsigned int k = 0; k < 3; ++k)
+              a += values[k] * vectors[k][i] * vectors[k][j];
+            out[i][j] = a * scale;
+          }
     }
 
     /// Logarithm of a symmetric positive definite tensor.
