@@ -183,18 +183,9 @@ namespace scarp
     {
       if (!mpm)
         return;
-      const auto &t = mpm->part_times();
-      // Compute: the time of a rank's own work, its exchanges left out.
-      const double compute = t.shape_functions + t.p2g + t.grid_update + t.g2p +
-                             t.constitutive_update - t.exchange;
-      const std::vector<std::pair<std::string, double>> parts = {
-        {"shape functions", t.shape_functions},
-        {"P2G", t.p2g},
-        {"grid update", t.grid_update},
-        {"G2P", t.g2p},
-        {"constitutive update", t.constitutive_update},
-        {"exchange", t.exchange},
-        {"compute", compute}};
+      const auto &t     = mpm->part_times();
+      auto        parts = t.named();
+      parts.emplace_back("compute", t.compute());
       part_statistics.clear();
       for (const auto &[name, seconds] : parts)
         part_statistics.emplace_back(name,
@@ -290,14 +281,9 @@ namespace scarp
       // The parts of the MPM step (this rank's, as the phases above).
       if (mpm)
         {
-          const auto             &t = mpm->part_times();
           postprocess::JsonObject parts;
-          parts.add("shape functions", t.shape_functions);
-          parts.add("P2G", t.p2g);
-          parts.add("grid update", t.grid_update);
-          parts.add("G2P", t.g2p);
-          parts.add("constitutive update", t.constitutive_update);
-          parts.add("exchange", t.exchange);
+          for (const auto &[name, seconds] : mpm->part_times().named())
+            parts.add(name, seconds);
           summary.add("mpm_step_parts", parts);
         }
       if (!part_statistics.empty())

@@ -147,19 +147,6 @@ namespace scarp
       return result;
     }
 
-    /// The symmetric tensor sum_i values[i] vectors[i] (x) vectors[i].
-    inline SymmetricTensor<2, 3>
-    compose(const std::array<double, 3>       &values,
-            const std::array<Tensor<1, 3>, 3> &vectors)
-    {
-      SymmetricTensor<2, 3> A;
-      for (unsigned int k = 0; k < 3; ++k)
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            A[i][j] += values[k] * vectors[k][i] * vectors[k][j];
-      return A;
-    }
-
     /// compose(values, vectors) * scale written into @p out entry by entry:
     /// the same sums and product as `compose(values, vectors) / J` with
     /// scale = 1 / J (deal.II divides by multiplying with the inverse), but
@@ -181,6 +168,17 @@ namespace scarp
               a += values[k] * vectors[k][i] * vectors[k][j];
             out[i][j] = a * scale;
           }
+    }
+
+    /// The symmetric tensor sum_i values[i] vectors[i] (x) vectors[i]
+    /// (the sums of compose_scaled_into(), times 1: exactly them).
+    inline SymmetricTensor<2, 3>
+    compose(const std::array<double, 3>       &values,
+            const std::array<Tensor<1, 3>, 3> &vectors)
+    {
+      SymmetricTensor<2, 3> A;
+      compose_scaled_into(values, vectors, 1., A);
+      return A;
     }
 
     /// Logarithm of a symmetric positive definite tensor.

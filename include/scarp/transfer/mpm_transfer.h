@@ -15,6 +15,8 @@
 
 #include <array>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace scarp
@@ -167,6 +169,26 @@ namespace scarp
       {
         double shape_functions = 0, p2g = 0, grid_update = 0, g2p = 0,
                constitutive_update = 0, exchange = 0;
+
+        /// The parts by the names summary.json gives them, in its order.
+        std::vector<std::pair<std::string, double>>
+        named() const
+        {
+          return {{"shape functions", shape_functions},
+                  {"P2G", p2g},
+                  {"grid update", grid_update},
+                  {"G2P", g2p},
+                  {"constitutive update", constitutive_update},
+                  {"exchange", exchange}};
+        }
+
+        /// This rank's own work: the parts less its exchange.
+        double
+        compute() const
+        {
+          return shape_functions + p2g + grid_update + g2p +
+                 constitutive_update - exchange;
+        }
       };
       const PartTimes &
       part_times() const
