@@ -5,7 +5,8 @@
 // computed in long double; off-diagonals far below the diagonal (1e-162 was
 // met in the Joss Bay cliff, whose square underflows) give finite, exact
 // results. exp_symmetric() of plane tensors, in closed form, matches the
-// same formula in long double.
+// same formula in long double; of general 3D tensors, by scaling and
+// squaring a Taylor series, the series summed in long double.
 
 #include <deal.II/base/symmetric_tensor.h>
 
@@ -145,5 +146,102 @@ main()
               1e-15);
   // log(exp(A)) = A: the decomposition's 1e-14 budget above.
   check_close("max |log(exp(A)) - A| / |exp(A)|", worst_round_trip, 0., 1e-14);
+
+  // exp_symmetric() of general 3D tensors (scaling and squaring of a Taylor
+  // polynomial of adaptive degree): against the series summed term by term
+  // in long double without scaling (another evaluation of the same
+  // function: 64-bit mantissa, terms until they no longer change the sum),
+  // against decomposing with deal.II's eigenvectors() and composing, and
+  // log(exp(A)) back to A. Strain-like tensors (entries up to 0.5, the
+  // scaled series alone or one squaring), larger ones (entries up to 1.5,
+  // up to five squarings) and tiny ones (entries down to 1e-12, a series of
+  // one or two terms).
+  double worst_series = 0, worst_decomposition = 0, worst_round_trip_3d = 0;
+  bool   series_finite = true;
+  for (unsigned int k = 0; k < 100000; ++k)
+    {
+      const double          size = (k % 3 == 0) ? 0.5
+                                   : (k % 3 == 1)
+                                     ? 1.5
+                                     : std::pow(10., -12. * std::abs(unit(random)));
+      SymmetricTensor<2, 3> B;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          B[i][j] = size * unit(random);
+      const SymmetricTensor<2, 3> E = exp_symmetric(B);
+      long double                 reference[3][3], term[3][3];
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          reference[i][j] = term[i][j] = (i == j) ? 1.L : 0.L;
+      for (unsigned int n = 1; n < 200; ++n)
+        {
+          long double next[3][3];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                next[i][j] = 0.L;
+                for (unsigned int l = 0; l < 3; ++l)
+                  next[i][j] += term[i][l] * (long double)B[l][j];
+                next[i][j] /= n;
+              }
+          bool changed = false;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                term[i][j]                = next[i][j];
+                const long double updated = reference[i][j] + term[i][j];
+                changed         = changed || updated != reference[i][j];
+                reference[i][j] = updated;
+              }
+          if (!changed)
+            break;
+        }
+      long double error = 0, norm = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            error = std::max(error, std::abs(E[i][j] - reference[i][j]));
+            norm += reference[i][j] * reference[i][j];
+          }
+      worst_series =
+        std::max(worst_series, static_cast<double>(error / std::sqrt(norm)));
+      series_finite = series_finite && std::isfinite(E.norm());
+      const auto                  eig = eigenvectors(B);
+      std::array<double, 3>       values;
+      std::array<Tensor<1, 3>, 3> vectors;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          values[i]  = std::exp(eig[i].first);
+          vectors[i] = eig[i].second;
+        }
+      worst_decomposition =
+        std::max(worst_decomposition,
+                 (compose(values, vectors) - E).norm() / E.norm());
+      worst_round_trip_3d =
+        std::max(worst_round_trip_3d,
+                 (log_spd(E) - B).norm() / std::max(1., B.norm()));
+    }
+  check("exp of 3D tensors finite", series_finite);
+  // Horner's 12 steps at most and up to five squarings, each a few ulps
+  // (2.2e-16) and doubled by the squaring that follows: measured 4.6e-15;
+  // 2e-14 leaves a factor of about 4.
+  check_close("3D: max |exp(A) - series(long double)| / |exp(A)|",
+              worst_series,
+              0.,
+              2e-14);
+  // The decomposition's own budget (1e-14 above) plus the series'.
+  check_close("3D: max |exp(A) - V exp(l) V^T| / |exp(A)|",
+              worst_decomposition,
+              0.,
+              3e-14);
+  // Bounded by the logarithm's decomposition, not by the series: exp(A)
+  // whose eigenvalues spread by up to e^9 loses digits of its smallest one
+  // in any decomposition; measured 2.1e-14 here, and 2.4e-14 with the
+  // series against 3.3e-14 with exp by decomposition on another 1e5
+  // tensors of entries up to 1.5.
+  check_close("3D: max |log(exp(A)) - A| / max(1, |A|)",
+              worst_round_trip_3d,
+              0.,
+              1e-13);
   return 0;
 }
