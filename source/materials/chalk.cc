@@ -356,7 +356,7 @@ namespace scarp
           double *const         state = batch.state[q];
           const double          d     = state[damage_variable];
           SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
+            hencky_trial_strain(batch.delta_F[q], state);
           // Effective (undamaged) principal Kirchhoff stress.
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
           const std::array<double, 3> tau_trial = tau;
@@ -376,7 +376,7 @@ namespace scarp
                 }
               state[plastic_strain] += std::sqrt(2. / 3. * norm2);
             }
-          store_symmetric(compose(e.values, e.vectors), state + elastic_strain);
+          store_composed(e.values, e.vectors, state + elastic_strain);
 
           const double J = determinant(batch.F[q]);
           // Driver from the undamaged Cauchy stress tau / J, after the

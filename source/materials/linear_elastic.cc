@@ -42,11 +42,11 @@ namespace scarp
         {
           double *const               state = batch.state[q];
           const SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
+            hencky_trial_strain(batch.delta_F[q], state);
           const std::array<double, 3> tau =
             elasticity.principal_stress(e.values);
           const double J = determinant(batch.F[q]);
-          store_symmetric(compose(e.values, e.vectors), state);
+          store_composed(e.values, e.vectors, state);
           compose_scaled_into(tau, e.vectors, 1. / J, batch.stress[q]);
           if (batch.stored_energy != nullptr)
             batch.stored_energy[q] =

@@ -50,7 +50,7 @@ namespace scarp
         {
           double *const         state = batch.state[q];
           SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], load_symmetric(state));
+            hencky_trial_strain(batch.delta_F[q], state);
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
           if (batch.inelastic.plasticity &&
               mohr_coulomb.return_stress(tau) !=
@@ -71,7 +71,7 @@ namespace scarp
               state[plastic_strain] += std::sqrt(2. / 3. * norm2);
               state[plastic_dissipation] += dissipation;
             }
-          store_symmetric(compose(e.values, e.vectors), state + elastic_strain);
+          store_composed(e.values, e.vectors, state + elastic_strain);
           compose_scaled_into(tau,
                               e.vectors,
                               1. / determinant(batch.F[q]),

@@ -23,10 +23,10 @@ namespace scarp
      * exactly; no objective stress rate is needed.
      */
     inline SpectralDecomposition
-    hencky_trial_strain(const Tensor<2, 3>          &delta_F,
-                        const SymmetricTensor<2, 3> &eps_e_n)
+    hencky_trial_strain_of(const Tensor<2, 3>          &delta_F,
+                           const SymmetricTensor<2, 3> &two_eps_e_n)
     {
-      const SymmetricTensor<2, 3> b_n = exp_symmetric(2. * eps_e_n);
+      const SymmetricTensor<2, 3> b_n = exp_symmetric(two_eps_e_n);
       SymmetricTensor<2, 3>       b_trial;
       if (b_n[0][2] == 0. && b_n[1][2] == 0. && delta_F[0][2] == 0. &&
           delta_F[1][2] == 0. && delta_F[2][0] == 0. && delta_F[2][1] == 0.)
@@ -61,6 +61,26 @@ namespace scarp
       for (double &v : s.values)
         v = 0.5 * std::log(v);
       return s;
+    }
+
+    /// The Hencky predictor of a tensor eps_e_n.
+    inline SpectralDecomposition
+    hencky_trial_strain(const Tensor<2, 3>          &delta_F,
+                        const SymmetricTensor<2, 3> &eps_e_n)
+    {
+      return hencky_trial_strain_of(delta_F, 2. * eps_e_n);
+    }
+
+    /// The Hencky predictor of eps_e_n stored as six doubles (xx, yy, zz, xy,
+    /// yz, xz) in a material state: 2 eps_e_n is built from the stored
+    /// entries one by one (the same products). Why: a tensor loaded from
+    /// the state entry by entry and then doubled in 16-byte pieces stalled
+    /// on a failed store-to-load forwarding per point (perf annotate).
+    inline SpectralDecomposition
+    hencky_trial_strain(const Tensor<2, 3> &delta_F, const double *eps_e_n)
+    {
+      return hencky_trial_strain_of(delta_F,
+                                    load_symmetric_scaled(eps_e_n, 2.));
     }
   } // namespace materials
 } // namespace scarp

@@ -309,6 +309,42 @@ namespace scarp
       return exp_symmetric_series(A);
     }
 
+    /// compose(values, vectors) stored as six doubles (xx, yy, zz, xy, yz,
+    /// xz) straight into @p v: the sums of compose(), without the temporary
+    /// that store_symmetric() copied in 16-byte pieces from its 8-byte
+    /// stores, a failed store-to-load forwarding per point (perf annotate of
+    /// Chalk::update on the refined cliff).
+    inline void
+    store_composed(const std::array<double, 3>       &values,
+                   const std::array<Tensor<1, 3>, 3> &vectors,
+                   double                            *v)
+    {
+      constexpr unsigned int row[6] = {0, 1, 2, 0, 1, 0};
+      constexpr unsigned int col[6] = {0, 1, 2, 1, 2, 2};
+      for (unsigned int n = 0; n < 6; ++n)
+        {
+          double a = 0.;
+          for (unsigned int k = 0; k < 3; ++k)
+            a += values[k] * vectors[k][row[n]] * vectors[k][col[n]];
+          v[n] = a;
+        }
+    }
+
+    /// factor times a symmetric tensor stored as six doubles (xx, yy, zz,
+    /// xy, yz, xz), entry by entry (the products of factor * A).
+    inline SymmetricTensor<2, 3>
+    load_symmetric_scaled(const double *v, const double factor)
+    {
+      SymmetricTensor<2, 3> A;
+      A[0][0] = v[0] * factor;
+      A[1][1] = v[1] * factor;
+      A[2][2] = v[2] * factor;
+      A[0][1] = v[3] * factor;
+      A[1][2] = v[4] * factor;
+      A[0][2] = v[5] * factor;
+      return A;
+    }
+
     /// Read a symmetric tensor stored as six doubles (xx, yy, zz, xy, yz,
     /// xz), the layout used for tensors in the material state arrays.
     inline SymmetricTensor<2, 3>
