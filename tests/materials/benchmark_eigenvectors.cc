@@ -1,7 +1,7 @@
 // Cost and accuracy of the 3x3 symmetric eigen-decomposition behind the 3D
 // constitutive update (doc/performance.md, "What is left"): deal.II's three
-// eigenvectors() methods and scarp's spectral_decomposition() (which takes
-// deal.II's QL method for a general 3D tensor), on 200 000 stress-like
+// eigenvectors() methods and scarp's spectral_decomposition() (for a general
+// 3D tensor spectral_decomposition_general()), on 200 000 stress-like
 // tensors (an isotropic -100 kPa plus a deviator of up to 1 kPa; every fourth
 // nearly isotropic, deviator 1e-3 Pa, where eigenvalues nearly repeat).
 // Prints nanoseconds per decomposition (the decomposition alone, median of
