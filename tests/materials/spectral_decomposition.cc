@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <limits>
 #include <random>
 
 #include "test_tools.h"
@@ -260,6 +261,26 @@ main()
                        (long double)d.values[i] / norm - reference[i])));
       }
     check("3D: all eigenpairs finite (scales 1e-150 to 1e150)", finite_3d);
+    // A NaN or an infinity in the tensor must come out (the step's
+    // finiteness check stops the run on it), not be hidden by the scaling
+    // or the clamp of the Lode angle.
+    bool bad_propagates = true;
+    for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
+                             std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()})
+      for (unsigned int entry = 0; entry < 6; ++entry)
+        {
+          SymmetricTensor<2, 3> B;
+          B[0][0] = 1., B[1][1] = 2., B[2][2] = 3.;
+          B[0][1] = 0.1, B[1][2] = 0.2, B[0][2] = 0.3;
+          B.access_raw_entry(entry)     = bad;
+          const SpectralDecomposition d = spectral_decomposition(B);
+          bad_propagates = bad_propagates && !(std::isfinite(d.values[0]) &&
+                                               std::isfinite(d.values[1]) &&
+                                               std::isfinite(d.values[2]));
+        }
+    check("3D: a NaN or infinite entry gives a non-finite eigenvalue",
+          bad_propagates);
     check("3D: eigenvalues in descending order", sorted_3d);
     // Backward stable: a few ulps of |A| (2.2e-16 each); measured 1.2e-15
     // (deal.II's QL method: 2.3e-15 on the benchmark's tensors), 1e-14
