@@ -13,7 +13,7 @@ namespace scarp
   namespace materials
   {
     /**
-     * Elastic predictor in logarithmic (Hencky) strain:
+     * Elastic predictor in logarithmic (Hencky) strain, given 2 eps_e_n:
      * b_e_trial = dF exp(2 eps_e_n) dF^T and eps_e_trial = 1/2 ln b_e_trial,
      * returned in spectral form (principal logarithmic strains in
      * descending order and their directions).
@@ -61,14 +61,6 @@ namespace scarp
       for (double &v : s.values)
         v = 0.5 * std::log(v);
       return s;
-    }
-
-    /// The Hencky predictor of a tensor eps_e_n.
-    inline SpectralDecomposition
-    hencky_trial_strain(const Tensor<2, 3>          &delta_F,
-                        const SymmetricTensor<2, 3> &eps_e_n)
-    {
-      return hencky_trial_strain_of(delta_F, 2. * eps_e_n);
     }
 
     /// The Hencky predictor of eps_e_n stored as six doubles (xx, yy, zz, xy,
