@@ -55,6 +55,31 @@ namespace scarp
       }
     };
 
+    /// Unit eigenvector (c, s) of the larger eigenvalue of the 2x2 block
+    /// scale (hs, bs; bs, -hs) with rs = |(hs, bs)| > 0, without trig: of the
+    /// two parallel candidates (hs + rs, bs) and (bs, rs - hs) the one
+    /// without cancellation; c >= 0 as with atan2.
+    inline void
+    plane_unit_vector(const double hs,
+                      const double bs,
+                      const double rs,
+                      double      &c,
+                      double      &s)
+    {
+      if (hs >= 0.)
+        {
+          const double n = std::sqrt(2. * rs * (rs + hs));
+          c              = (hs + rs) / n;
+          s              = bs / n;
+        }
+      else
+        {
+          const double n = std::sqrt(2. * rs * (rs - hs));
+          c              = std::abs(bs) / n;
+          s              = std::copysign(rs - hs, bs) / n;
+        }
+    }
+
     /// Spectral decomposition of a general symmetric 3x3 tensor (some
     /// off-diagonal of xz, yz nonzero) in the manner of Scherzinger and
     /// Dohrmann (2008): on the deviator scaled to its largest entry, the
@@ -150,23 +175,10 @@ namespace scarp
       double       c = 1., sn = 0., pair_radius = 0.;
       if (big > 0.)
         {
-          // The larger eigenvalue's unit vector (c, sn) without
-          // cancellation, as in the plane branch below.
           const double hs = half / big, bs = a12 / big;
           const double rs = std::sqrt(hs * hs + bs * bs);
           pair_radius     = big * rs;
-          if (hs >= 0.)
-            {
-              const double n = std::sqrt(2. * rs * (rs + hs));
-              c              = (hs + rs) / n;
-              sn             = bs / n;
-            }
-          else
-            {
-              const double n = std::sqrt(2. * rs * (rs - hs));
-              c              = std::abs(bs) / n;
-              sn             = std::copysign(rs - hs, bs) / n;
-            }
+          plane_unit_vector(hs, bs, rs, c, sn);
         }
       const Tensor<1, 3> w_upper = c * u1 + sn * u2;
       const Tensor<1, 3> w_lower = c * u2 - sn * u1;
@@ -246,22 +258,8 @@ namespace scarp
           const double     mean = block.mean, hs = block.hs, bs = block.bs,
                        rs     = block.rs;
           const double radius = block.scale * rs;
-          // Unit eigenvector (c, s) of the larger eigenvalue without trig:
-          // of the two parallel candidates (half + r, b) and (b, r - half)
-          // take the one without cancellation; c >= 0 as with atan2.
-          double c, s;
-          if (hs >= 0.)
-            {
-              const double n = std::sqrt(2. * rs * (rs + hs));
-              c              = (hs + rs) / n;
-              s              = bs / n;
-            }
-          else
-            {
-              const double n = std::sqrt(2. * rs * (rs - hs));
-              c              = std::abs(bs) / n;
-              s              = std::copysign(rs - hs, bs) / n;
-            }
+          double       c, s;
+          plane_unit_vector(hs, bs, rs, c, s);
           // The in-plane pair is in order (radius >= 0); zz goes above,
           // between or below it, ties as the sort by swaps put them. Each
           // entry is written once into the result: picking whole vectors
