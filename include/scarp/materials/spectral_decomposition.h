@@ -335,6 +335,47 @@ namespace scarp
       return compose(s.values, s.vectors);
     }
 
+    /// factor times a symmetric tensor stored as six doubles (xx, yy, zz,
+    /// xy, yz, xz), entry by entry (the products of factor * A).
+    inline SymmetricTensor<2, 3>
+    load_symmetric_scaled(const double *v, const double factor)
+    {
+      SymmetricTensor<2, 3> A;
+      A[0][0] = v[0] * factor;
+      A[1][1] = v[1] * factor;
+      A[2][2] = v[2] * factor;
+      A[0][1] = v[3] * factor;
+      A[1][2] = v[4] * factor;
+      A[0][2] = v[5] * factor;
+      return A;
+    }
+
+    /// Read a symmetric tensor stored as six doubles (xx, yy, zz, xy, yz,
+    /// xz), the layout used for tensors in the material state arrays.
+    inline SymmetricTensor<2, 3>
+    load_symmetric(const double *v)
+    {
+      SymmetricTensor<2, 3> A;
+      A[0][0] = v[0];
+      A[1][1] = v[1];
+      A[2][2] = v[2];
+      A[0][1] = v[3];
+      A[1][2] = v[4];
+      A[0][2] = v[5];
+      return A;
+    }
+
+    /// Store a symmetric tensor as six doubles (xx, yy, zz, xy, yz, xz).
+    inline void
+    store_symmetric(const SymmetricTensor<2, 3> &A, double *v)
+    {
+      v[0] = A[0][0];
+      v[1] = A[1][1];
+      v[2] = A[2][2];
+      v[3] = A[0][1];
+      v[4] = A[1][2];
+      v[5] = A[0][2];
+    }
     /// Exponential of a general symmetric tensor by scaling and squaring
     /// with a Taylor polynomial whose degree follows the norm: exp(A) =
     /// exp(A / 2^s)^(2^s) with |A / 2^s| <= 1/4, the series cut where its
@@ -411,14 +452,7 @@ namespace scarp
                                p[0] * p[5] + p[3] * p[4] + p[5] * p[2]};
           std::copy(q, q + 6, p);
         }
-      SymmetricTensor<2, 3> E;
-      E[0][0] = p[0];
-      E[1][1] = p[1];
-      E[2][2] = p[2];
-      E[0][1] = p[3];
-      E[1][2] = p[4];
-      E[0][2] = p[5];
-      return E;
+      return load_symmetric(p);
     }
 
     /// Exponential of a symmetric tensor (the result is SPD): plane tensors
@@ -472,48 +506,6 @@ namespace scarp
             a += values[k] * vectors[k][row[n]] * vectors[k][col[n]];
           v[n] = a;
         }
-    }
-
-    /// factor times a symmetric tensor stored as six doubles (xx, yy, zz,
-    /// xy, yz, xz), entry by entry (the products of factor * A).
-    inline SymmetricTensor<2, 3>
-    load_symmetric_scaled(const double *v, const double factor)
-    {
-      SymmetricTensor<2, 3> A;
-      A[0][0] = v[0] * factor;
-      A[1][1] = v[1] * factor;
-      A[2][2] = v[2] * factor;
-      A[0][1] = v[3] * factor;
-      A[1][2] = v[4] * factor;
-      A[0][2] = v[5] * factor;
-      return A;
-    }
-
-    /// Read a symmetric tensor stored as six doubles (xx, yy, zz, xy, yz,
-    /// xz), the layout used for tensors in the material state arrays.
-    inline SymmetricTensor<2, 3>
-    load_symmetric(const double *v)
-    {
-      SymmetricTensor<2, 3> A;
-      A[0][0] = v[0];
-      A[1][1] = v[1];
-      A[2][2] = v[2];
-      A[0][1] = v[3];
-      A[1][2] = v[4];
-      A[0][2] = v[5];
-      return A;
-    }
-
-    /// Store a symmetric tensor as six doubles (xx, yy, zz, xy, yz, xz).
-    inline void
-    store_symmetric(const SymmetricTensor<2, 3> &A, double *v)
-    {
-      v[0] = A[0][0];
-      v[1] = A[1][1];
-      v[2] = A[2][2];
-      v[3] = A[0][1];
-      v[4] = A[1][2];
-      v[5] = A[0][2];
     }
   } // namespace materials
 } // namespace scarp
