@@ -2,9 +2,9 @@
 """Reads two particle outputs (.pvtu) with VTK, the library ParaView reads
 them with, and compares them point by point (matched by id): the number of
 points and cells, the arrays and their values. Used to check that the
-several pieces per file of scarp's particle output (doc/performance.md,
-"Memory") read as one data set, against a run written with one piece per
-rank.
+several pieces per file of scarp's particle output
+(doc/performance/memory.md, "Memory") read as one data set, against a run
+written with one piece per rank.
 
     /usr/bin/python3 tools/vtk_compare_particles.py A/particles_00001.pvtu B/particles_00001.pvtu
 

@@ -1,16 +1,16 @@
 #!/usr/bin/python3
 """Run scarp and CB-Geo mpm side by side on the same elastic column under
 gravity, one core each, and print their speed and their bottom stress
-(doc/performance.md, "Side by side with CB-Geo `mpm`").
+(doc/performance/cbgeo_side_by_side.md, "Side by side with CB-Geo `mpm`").
 
     python3 bench/cbgeo/side_by_side.py [--scarp build/scarp]
         [--cbgeo /work/cbgeo/build/mpm] [--sizes 25,40,80] [--steps 2000]
         [--repeat 5] [--youngs 1e8] [--work /tmp/scarp-cbgeo] [--csv FILE]
 
 Run from the repository root. CB-Geo mpm is not part of scarp: build it
-from its own public source, outside this repository (doc/performance.md
-says how), and pass its executable with --cbgeo. Reading its HDF5 output
-needs h5dump (Debian package hdf5-tools); without it the stresses of
+from its own public source, outside this repository
+(doc/performance/cbgeo_side_by_side.md says how), and pass its executable
+with --cbgeo. Reading its HDF5 output needs h5dump (Debian package hdf5-tools); without it the stresses of
 CB-Geo are not shown, the timings are.
 
 The problem, written for both codes into --work (nothing of CB-Geo is

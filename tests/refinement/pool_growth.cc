@@ -117,9 +117,10 @@ namespace
   // order of the cells (1 540 of 1 600 here without the sort that
   // follows it), while the transfers walk the points cell by cell; scattered
   // over the pool they made P2G and G2P wait on memory (a 1e6-point column on 2
-  // ranks 1.3 times slower, doc/performance.md). The full sort after the
-  // balance puts the pool in the order of the particle handler's walk: the
-  // slots must be 0, 1, 2, ... in that order, on every rank.
+  // ranks 1.3 times slower, doc/performance/sort_and_refinement.md). The
+  // full sort after the balance puts the pool in the order of the particle
+  // handler's walk: the slots must be 0, 1, 2, ... in that order, on every
+  // rank.
   void
   order_after_balance()
   {

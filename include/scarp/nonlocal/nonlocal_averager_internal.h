@@ -17,8 +17,8 @@ namespace scarp
      * @brief Small helpers shared by the nonlocal_*.cc files (the steps of
      * NonlocalAverager: exchange, neighbour lists, sums); not part of
      * scarp's interface. Declared inline, so that the loops that call
-     * them keep them inlined (doc/performance.md, "The parts of the MPM
-     * step rank by rank; MpmTransfer in files by part").
+     * them keep them inlined (doc/performance/exchange_and_ranks.md, "The
+     * parts of the MPM step rank by rank; MpmTransfer in files by part").
      */
     namespace internal
     {

@@ -22,7 +22,7 @@ namespace scarp
      * Particles::DataOut builds one patch, with a table of its own, for
      * every point of the rank, and write_vtu() copies them all into its
      * arrays once more: about 500 bytes per point for the time of the
-     * write, the largest transient of a run (doc/performance.md,
+     * write, the largest transient of a run (doc/performance/memory.md,
      * "Memory"). Here at most @p chunk_size points are held at a time: each
      * chunk goes out as one <Piece> of the same file (DataOutBase::
      * write_vtu_main() between one header and one footer), which VTK
