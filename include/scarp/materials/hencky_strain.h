@@ -55,57 +55,22 @@ namespace scarp
         for (unsigned int j = i; j < 2; ++j)
           b_trial[i][j] = Fb[i][0] * delta_F[j][0] + Fb[i][1] * delta_F[j][1];
       const double zz = 0.5 * two_eps_e_n[2][2];
+      // Diagonal: sorted as spectral_decomposition_diagonal() sorts, on
+      // the strains.
       if (b_trial[0][1] == 0.)
-        {
-          // Diagonal: sorted by swaps as spectral_decomposition_diagonal()
-          // sorts, on the strains.
-          SpectralDecomposition s;
-          s.values = {
-            {0.5 * std::log(b_trial[0][0]), 0.5 * std::log(b_trial[1][1]), zz}};
-          std::array<unsigned int, 3> order = {{0, 1, 2}};
-          if (s.values[order[0]] < s.values[order[1]])
-            std::swap(order[0], order[1]);
-          if (s.values[order[1]] < s.values[order[2]])
-            std::swap(order[1], order[2]);
-          if (s.values[order[0]] < s.values[order[1]])
-            std::swap(order[0], order[1]);
-          const std::array<double, 3> unsorted = s.values;
-          for (unsigned int i = 0; i < 3; ++i)
-            {
-              s.values[i]            = unsorted[order[i]];
-              s.vectors[i]           = Tensor<1, 3>();
-              s.vectors[i][order[i]] = 1.;
-            }
-          return s;
-        }
+        return sorted_diagonal(
+          {{0.5 * std::log(b_trial[0][0]), 0.5 * std::log(b_trial[1][1]), zz}});
       // The in-plane pair as spectral_decomposition_plane() finds it, zz
       // placed among the strains as it places it among the stretches.
       const PlaneBlock trial(b_trial);
       const double     radius = trial.scale * trial.rs;
-      double           c, sn;
-      plane_unit_vector(trial.hs, trial.bs, trial.rs, c, sn);
-      const double          upper   = 0.5 * std::log(trial.mean + radius);
-      const double          lower   = 0.5 * std::log(trial.mean - radius);
-      const unsigned int    zz_slot = !(lower < zz) ? 2 : (upper < zz) ? 0 : 1;
-      const unsigned int    upper_slot = zz_slot == 0 ? 1 : 0;
-      const unsigned int    lower_slot = zz_slot == 2 ? 1 : 2;
-      SpectralDecomposition s;
-      s.values[upper_slot]  = upper;
-      s.values[lower_slot]  = lower;
-      s.values[zz_slot]     = zz;
-      Tensor<1, 3> &v_upper = s.vectors[upper_slot];
-      Tensor<1, 3> &v_lower = s.vectors[lower_slot];
-      Tensor<1, 3> &v_zz    = s.vectors[zz_slot];
-      v_upper[0]            = c;
-      v_upper[1]            = sn;
-      v_upper[2]            = 0.;
-      v_lower[0]            = -sn;
-      v_lower[1]            = c;
-      v_lower[2]            = 0.;
-      v_zz[0]               = 0.;
-      v_zz[1]               = 0.;
-      v_zz[2]               = 1.;
-      return s;
+      double           c, s;
+      plane_unit_vector(trial.hs, trial.bs, trial.rs, c, s);
+      return plane_pair_and_zz(0.5 * std::log(trial.mean + radius),
+                               0.5 * std::log(trial.mean - radius),
+                               zz,
+                               c,
+                               s);
     }
 
     /**

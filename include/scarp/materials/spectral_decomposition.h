@@ -218,27 +218,71 @@ namespace scarp
       return result;
     }
 
+    /// The decomposition of a diagonal tensor from its diagonal: the values
+    /// sorted in descending order by swaps (ties keep the order x, y, z),
+    /// the vectors the axes.
+    inline SpectralDecomposition
+    sorted_diagonal(const std::array<double, 3> &diagonal)
+    {
+      SpectralDecomposition       result;
+      std::array<unsigned int, 3> order = {{0, 1, 2}};
+      if (diagonal[order[0]] < diagonal[order[1]])
+        std::swap(order[0], order[1]);
+      if (diagonal[order[1]] < diagonal[order[2]])
+        std::swap(order[1], order[2]);
+      if (diagonal[order[0]] < diagonal[order[1]])
+        std::swap(order[0], order[1]);
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          result.values[i]            = diagonal[order[i]];
+          result.vectors[i]           = Tensor<1, 3>();
+          result.vectors[i][order[i]] = 1.;
+        }
+      return result;
+    }
+
+    /// The decomposition of a plane tensor from its in-plane pair (upper >=
+    /// lower, (c, s) the unit vector of upper) and its zz value: zz goes
+    /// above, between or below the pair, ties as sorted_diagonal() would
+    /// put them. Each entry is written once into the result: picking
+    /// whole vectors from a temporary array by index read back in 16-byte
+    /// pieces what had been stored in 8-byte ones, a failed store-to-load
+    /// forwarding per point (perf annotate of the elastic column).
+    inline SpectralDecomposition
+    plane_pair_and_zz(const double upper,
+                      const double lower,
+                      const double zz,
+                      const double c,
+                      const double s)
+    {
+      SpectralDecomposition result;
+      const unsigned int    zz_slot = !(lower < zz) ? 2 : (upper < zz) ? 0 : 1;
+      const unsigned int    upper_slot = zz_slot == 0 ? 1 : 0;
+      const unsigned int    lower_slot = zz_slot == 2 ? 1 : 2;
+      result.values[upper_slot]        = upper;
+      result.values[lower_slot]        = lower;
+      result.values[zz_slot]           = zz;
+      Tensor<1, 3> &v_upper            = result.vectors[upper_slot];
+      Tensor<1, 3> &v_lower            = result.vectors[lower_slot];
+      Tensor<1, 3> &v_zz               = result.vectors[zz_slot];
+      v_upper[0]                       = c;
+      v_upper[1]                       = s;
+      v_upper[2]                       = 0.;
+      v_lower[0]                       = -s;
+      v_lower[1]                       = c;
+      v_lower[2]                       = 0.;
+      v_zz[0]                          = 0.;
+      v_zz[1]                          = 0.;
+      v_zz[2]                          = 1.;
+      return result;
+    }
+
     /// Spectral decomposition of a diagonal tensor: its own, the diagonal
     /// sorted (this keeps the stress-free state exactly stress-free).
     inline SpectralDecomposition
     spectral_decomposition_diagonal(const SymmetricTensor<2, 3> &A)
     {
-      SpectralDecomposition       result;
-      std::array<unsigned int, 3> order = {{0, 1, 2}};
-      // Sort the diagonal in descending order (3 elements).
-      if (A[order[0]][order[0]] < A[order[1]][order[1]])
-        std::swap(order[0], order[1]);
-      if (A[order[1]][order[1]] < A[order[2]][order[2]])
-        std::swap(order[1], order[2]);
-      if (A[order[0]][order[0]] < A[order[1]][order[1]])
-        std::swap(order[0], order[1]);
-      for (unsigned int i = 0; i < 3; ++i)
-        {
-          result.values[i]            = A[order[i]][order[i]];
-          result.vectors[i]           = Tensor<1, 3>();
-          result.vectors[i][order[i]] = 1.;
-        }
-      return result;
+      return sorted_diagonal({{A[0][0], A[1][1], A[2][2]}});
     }
 
     /// Spectral decomposition of a plane tensor (xz = yz = 0, xy != 0):
@@ -248,40 +292,13 @@ namespace scarp
     inline SpectralDecomposition
     spectral_decomposition_plane(const SymmetricTensor<2, 3> &A)
     {
-      SpectralDecomposition result;
       // scale > 0 here, as b != 0.
       const PlaneBlock block(A);
-      const double     mean = block.mean, hs = block.hs, bs = block.bs,
-                   rs     = block.rs;
-      const double radius = block.scale * rs;
-      double       c, s;
-      plane_unit_vector(hs, bs, rs, c, s);
-      // The in-plane pair is in order (radius >= 0); zz goes above,
-      // between or below it, ties as the sort by swaps put them. Each
-      // entry is written once into the result: picking whole vectors
-      // from a temporary array by index read back in 16-byte pieces
-      // what had been stored in 8-byte ones, a failed store-to-load
-      // forwarding per point (perf annotate of the elastic column).
-      const double upper = mean + radius, lower = mean - radius, zz = A[2][2];
-      const unsigned int zz_slot    = !(lower < zz) ? 2 : (upper < zz) ? 0 : 1;
-      const unsigned int upper_slot = zz_slot == 0 ? 1 : 0;
-      const unsigned int lower_slot = zz_slot == 2 ? 1 : 2;
-      result.values[upper_slot]     = upper;
-      result.values[lower_slot]     = lower;
-      result.values[zz_slot]        = zz;
-      Tensor<1, 3> &v_upper         = result.vectors[upper_slot];
-      Tensor<1, 3> &v_lower         = result.vectors[lower_slot];
-      Tensor<1, 3> &v_zz            = result.vectors[zz_slot];
-      v_upper[0]                    = c;
-      v_upper[1]                    = s;
-      v_upper[2]                    = 0.;
-      v_lower[0]                    = -s;
-      v_lower[1]                    = c;
-      v_lower[2]                    = 0.;
-      v_zz[0]                       = 0.;
-      v_zz[1]                       = 0.;
-      v_zz[2]                       = 1.;
-      return result;
+      const double     radius = block.scale * block.rs;
+      double           c, s;
+      plane_unit_vector(block.hs, block.bs, block.rs, c, s);
+      return plane_pair_and_zz(
+        block.mean + radius, block.mean - radius, A[2][2], c, s);
     }
 
     /// Spectral decomposition of a symmetric 3x3 tensor (exact for
