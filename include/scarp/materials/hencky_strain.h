@@ -29,23 +29,9 @@ namespace scarp
                               const SymmetricTensor<2, 3> &two_eps_e_n)
     {
       // exp of the in-plane block, as exp_symmetric() computes it.
-      double           b_n[2][2];
-      const PlaneBlock block(two_eps_e_n);
-      if (block.scale == 0.)
-        {
-          b_n[0][0] = b_n[1][1] = std::exp(block.mean);
-          b_n[0][1] = b_n[1][0] = 0.;
-        }
-      else
-        {
-          const double radius = block.scale * block.rs;
-          const double lower  = std::exp(block.mean - radius);
-          const double w      = 0.5 * lower * std::expm1(2. * radius);
-          const double sum    = lower + w;
-          b_n[0][0]           = sum + w * (block.hs / block.rs);
-          b_n[1][1]           = sum - w * (block.hs / block.rs);
-          b_n[0][1] = b_n[1][0] = w * (block.bs / block.rs);
-        }
+      double b_n[2][2];
+      exp_plane_block(two_eps_e_n, b_n[0][0], b_n[1][1], b_n[0][1]);
+      b_n[1][0] = b_n[0][1];
       double Fb[2][2];
       for (unsigned int i = 0; i < 2; ++i)
         for (unsigned int k = 0; k < 2; ++k)

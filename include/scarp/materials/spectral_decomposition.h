@@ -486,6 +486,34 @@ namespace scarp
       return load_symmetric(p);
     }
 
+    /// The in-plane block (xx, yy, xy) of exp(A) for a plane tensor A, in
+    /// closed form without eigenvectors: exp(A) = (e1 + e2)/2 I + (e1 -
+    /// e2)/2 (A - m I)/r with e1,2 = exp(m +- r); e1 - e2 = exp(m - r)
+    /// expm1(2 r) keeps the digits that the difference of the two
+    /// exponentials loses when r is small. Shared by exp_symmetric() and
+    /// the plane Hencky predictor, which needs no zz entry.
+    inline void
+    exp_plane_block(const SymmetricTensor<2, 3> &A,
+                    double                      &xx,
+                    double                      &yy,
+                    double                      &xy)
+    {
+      const PlaneBlock block(A);
+      if (block.scale == 0.)
+        {
+          xx = yy = std::exp(block.mean);
+          xy      = 0.;
+          return;
+        }
+      const double radius = block.scale * block.rs;
+      const double lower  = std::exp(block.mean - radius);
+      const double w      = 0.5 * lower * std::expm1(2. * radius);
+      const double sum    = lower + w;
+      xx                  = sum + w * (block.hs / block.rs);
+      yy                  = sum - w * (block.hs / block.rs);
+      xy                  = w * (block.bs / block.rs);
+    }
+
     /// Exponential of a symmetric tensor (the result is SPD): plane tensors
     /// in closed form, others by exp_symmetric_series().
     inline SymmetricTensor<2, 3>
@@ -493,26 +521,11 @@ namespace scarp
     {
       if (A[0][2] == 0. && A[1][2] == 0.)
         {
-          // Plane strain: the in-plane block in closed form without its
-          // eigenvectors, exp(A) = (e1 + e2)/2 I + (e1 - e2)/2 (A - m I)/r
-          // with e1,2 = exp(m +- r); e1 - e2 = exp(m - r) expm1(2 r) keeps
-          // the digits that the difference of the two exponentials loses
-          // when r is small. Half the cost of decompose-and-compose.
-          const PlaneBlock      block(A);
+          // Plane strain: the in-plane block in closed form
+          // (exp_plane_block()), half the cost of decompose-and-compose.
           SymmetricTensor<2, 3> E;
           E[2][2] = std::exp(A[2][2]);
-          if (block.scale == 0.)
-            {
-              E[0][0] = E[1][1] = std::exp(block.mean);
-              return E;
-            }
-          const double radius = block.scale * block.rs;
-          const double lower  = std::exp(block.mean - radius);
-          const double w      = 0.5 * lower * std::expm1(2. * radius);
-          const double sum    = lower + w;
-          E[0][0]             = sum + w * (block.hs / block.rs);
-          E[1][1]             = sum - w * (block.hs / block.rs);
-          E[0][1]             = w * (block.bs / block.rs);
+          exp_plane_block(A, E[0][0], E[1][1], E[0][1]);
           return E;
         }
       return exp_symmetric_series(A);
