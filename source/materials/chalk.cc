@@ -350,13 +350,19 @@ namespace scarp
     void
     Chalk::update(const MaterialBatch &batch) const
     {
-      const double rg = parameters.residual_shear_ratio;
+      const double          rg = parameters.residual_shear_ratio;
+      SpectralDecomposition trial[hencky_chunk];
       for (unsigned int q = 0; q < batch.n; ++q)
         {
-          double *const         state = batch.state[q];
-          const double          d     = state[damage_variable];
-          SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], state);
+          // The predictors of the next points, stage by stage.
+          if (q % hencky_chunk == 0)
+            hencky_trial_strains(batch.delta_F + q,
+                                 batch.state + q,
+                                 std::min(hencky_chunk, batch.n - q),
+                                 trial);
+          double *const          state = batch.state[q];
+          const double           d     = state[damage_variable];
+          SpectralDecomposition &e     = trial[q % hencky_chunk];
           // Effective (undamaged) principal Kirchhoff stress.
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
           const std::array<double, 3> tau_trial = tau;

@@ -38,12 +38,18 @@ namespace scarp
     void
     LinearElastic::update(const MaterialBatch &batch) const
     {
+      SpectralDecomposition trial[hencky_chunk];
       for (unsigned int q = 0; q < batch.n; ++q)
         {
-          double *const               state = batch.state[q];
-          const SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], state);
-          const std::array<double, 3> tau =
+          // The predictors of the next points, stage by stage.
+          if (q % hencky_chunk == 0)
+            hencky_trial_strains(batch.delta_F + q,
+                                 batch.state + q,
+                                 std::min(hencky_chunk, batch.n - q),
+                                 trial);
+          double *const                state = batch.state[q];
+          const SpectralDecomposition &e     = trial[q % hencky_chunk];
+          const std::array<double, 3>  tau =
             elasticity.principal_stress(e.values);
           const double J = determinant(batch.F[q]);
           store_composed(e.values, e.vectors, state);

@@ -46,12 +46,18 @@ namespace scarp
     void
     MohrCoulomb::update(const MaterialBatch &batch) const
     {
+      SpectralDecomposition trial[hencky_chunk];
       for (unsigned int q = 0; q < batch.n; ++q)
         {
-          double *const         state = batch.state[q];
-          SpectralDecomposition e =
-            hencky_trial_strain(batch.delta_F[q], state);
-          std::array<double, 3> tau = elasticity.principal_stress(e.values);
+          // The predictors of the next points, stage by stage.
+          if (q % hencky_chunk == 0)
+            hencky_trial_strains(batch.delta_F + q,
+                                 batch.state + q,
+                                 std::min(hencky_chunk, batch.n - q),
+                                 trial);
+          double *const          state = batch.state[q];
+          SpectralDecomposition &e     = trial[q % hencky_chunk];
+          std::array<double, 3>  tau   = elasticity.principal_stress(e.values);
           if (batch.inelastic.plasticity &&
               mohr_coulomb.return_stress(tau) !=
                 MohrCoulombReturn::Region::elastic)

@@ -2,8 +2,9 @@
 // path of every 2D point): its principal strains and directions against
 // the same predictor computed in long double with the 2x2 block in closed
 // form (atan2, exp, log of long double), on random plane strains and
-// increments; the out-of-plane strain equal to eps_e_n's zz exactly; and
-// the general path (exp, product, 3x3 decomposition, log) beside it.
+// increments; the out-of-plane strain equal to eps_e_n's zz exactly; the
+// general path (exp, product, 3x3 decomposition, log) beside it; and the
+// predictors by chunks (hencky_trial_strains()) equal to one at a time.
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include "test_tools.h"
 
@@ -219,5 +221,64 @@ main()
               std::max(0., static_cast<double>(worst_order)),
               0.,
               0.);
+
+  // The predictors by chunks (hencky_trial_strains(), the materials'
+  // path) against one at a time (hencky_trial_strain()): the same
+  // operations per point, so the same numbers bit for bit (tolerance 0).
+  // Chunks of 1 to hencky_chunk points; among the points diagonal ones,
+  // ones with an out-of-plane shear (xz) or dF_zz != 1 (the general path)
+  // and stress-free ones (exp of a zero block).
+  {
+    const unsigned int        m = 20000;
+    std::vector<double>       stored(6 * m);
+    std::vector<double *>     state(m);
+    std::vector<Tensor<2, 3>> dF(m);
+    for (unsigned int k = 0; k < m; ++k)
+      {
+        double *e           = &stored[6 * k];
+        state[k]            = e;
+        const double strain = std::pow(10., -8. + 7.5 * (k % 16) / 15.);
+        const bool   zero   = k % 23 == 5;
+        e[0]                = zero ? 0. : strain * unit(rng);
+        e[1]                = zero ? 0. : strain * unit(rng);
+        e[2]                = zero ? 0. : strain * unit(rng);
+        e[3]                = (zero || k % 10 == 3) ? 0. : strain * unit(rng);
+        e[4]                = 0.;
+        e[5]                = (k % 17 == 4) ? strain * unit(rng) : 0.;
+        const double increment = std::pow(10., -9. + 7.7 * (k % 13) / 12.);
+        for (unsigned int i = 0; i < 2; ++i)
+          for (unsigned int j = 0; j < 2; ++j)
+            dF[k][i][j] = (i == j ? 1. : 0.) + increment * unit(rng);
+        if (k % 10 == 3)
+          dF[k][0][1] = dF[k][1][0] = 0.;
+        dF[k][2][2] = (k % 19 == 7) ? 1. + increment * unit(rng) : 1.;
+      }
+    unsigned int          differ = 0, n_chunks = 0;
+    SpectralDecomposition chunk[hencky_chunk];
+    for (unsigned int k = 0; k < m; ++n_chunks)
+      {
+        const unsigned int size = std::min(1 + n_chunks % hencky_chunk, m - k);
+        hencky_trial_strains(&dF[k], &state[k], size, chunk);
+        for (unsigned int c = 0; c < size; ++c)
+          {
+            const SpectralDecomposition one =
+              hencky_trial_strain(dF[k + c], state[k + c]);
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                differ += one.values[i] != chunk[c].values[i];
+                for (unsigned int j = 0; j < 3; ++j)
+                  differ += one.vectors[i][j] != chunk[c].vectors[i][j];
+              }
+          }
+        k += size;
+      }
+    std::cout << m << " predictors in " << n_chunks << " chunks of 1 to "
+              << hencky_chunk << " points" << std::endl;
+    check_close("predictors by chunks: entries that differ from one at a "
+                "time",
+                differ,
+                0.,
+                0.);
+  }
   return 0;
 }

@@ -66,18 +66,16 @@ namespace scarp
                       double      &c,
                       double      &s)
     {
-      if (hs >= 0.)
-        {
-          const double n = std::sqrt(2. * rs * (rs + hs));
-          c              = (hs + rs) / n;
-          s              = bs / n;
-        }
-      else
-        {
-          const double n = std::sqrt(2. * rs * (rs - hs));
-          c              = std::abs(bs) / n;
-          s              = std::copysign(rs - hs, bs) / n;
-        }
+      // Both cases at once (rs + |hs| is rs + hs or rs - hs exactly), the
+      // case picked by selects: the sign of hs varies from point to point,
+      // and a branch on it was mispredicted about every other point.
+      const bool   positive = hs >= 0.;
+      const double a        = rs + std::abs(hs);
+      const double n        = std::sqrt(2. * rs * a);
+      const double c_num    = positive ? a : std::abs(bs);
+      const double s_num    = positive ? bs : std::copysign(a, bs);
+      c                     = c_num / n;
+      s                     = s_num / n;
     }
 
     /// Spectral decomposition of a general symmetric 3x3 tensor (some
@@ -244,10 +242,46 @@ namespace scarp
     /// The decomposition of a plane tensor from its in-plane pair (upper >=
     /// lower, (c, s) the unit vector of upper) and its zz value: zz goes
     /// above, between or below the pair, ties as sorted_diagonal() would
-    /// put them. Each entry is written once into the result: picking
+    /// put them. Each entry is written once into @p result: picking
     /// whole vectors from a temporary array by index read back in 16-byte
     /// pieces what had been stored in 8-byte ones, a failed store-to-load
-    /// forwarding per point (perf annotate of the elastic column).
+    /// forwarding per point (perf annotate of the elastic column); so did
+    /// a returned value assigned to an array element (written to the
+    /// stack, then copied), hence the output argument.
+    inline void
+    plane_pair_and_zz_into(const double           upper,
+                           const double           lower,
+                           const double           zz,
+                           const double           c,
+                           const double           s,
+                           SpectralDecomposition &result)
+    {
+      // The slots by arithmetic on the comparisons, without branches (the
+      // place of zz varies from point to point): zz above the pair goes to
+      // 0, between to 1, at or below lower to 2 (upper >= lower).
+      const unsigned int above_lower = lower < zz;
+      const unsigned int above_upper = upper < zz;
+      const unsigned int zz_slot     = 2 - above_lower - above_upper;
+      const unsigned int upper_slot  = above_upper;
+      const unsigned int lower_slot  = 1 + above_lower;
+      result.values[upper_slot]      = upper;
+      result.values[lower_slot]      = lower;
+      result.values[zz_slot]         = zz;
+      Tensor<1, 3> &v_upper          = result.vectors[upper_slot];
+      Tensor<1, 3> &v_lower          = result.vectors[lower_slot];
+      Tensor<1, 3> &v_zz             = result.vectors[zz_slot];
+      v_upper[0]                     = c;
+      v_upper[1]                     = s;
+      v_upper[2]                     = 0.;
+      v_lower[0]                     = -s;
+      v_lower[1]                     = c;
+      v_lower[2]                     = 0.;
+      v_zz[0]                        = 0.;
+      v_zz[1]                        = 0.;
+      v_zz[2]                        = 1.;
+    }
+
+    /// plane_pair_and_zz_into() as a value.
     inline SpectralDecomposition
     plane_pair_and_zz(const double upper,
                       const double lower,
@@ -256,24 +290,7 @@ namespace scarp
                       const double s)
     {
       SpectralDecomposition result;
-      const unsigned int    zz_slot = !(lower < zz) ? 2 : (upper < zz) ? 0 : 1;
-      const unsigned int    upper_slot = zz_slot == 0 ? 1 : 0;
-      const unsigned int    lower_slot = zz_slot == 2 ? 1 : 2;
-      result.values[upper_slot]        = upper;
-      result.values[lower_slot]        = lower;
-      result.values[zz_slot]           = zz;
-      Tensor<1, 3> &v_upper            = result.vectors[upper_slot];
-      Tensor<1, 3> &v_lower            = result.vectors[lower_slot];
-      Tensor<1, 3> &v_zz               = result.vectors[zz_slot];
-      v_upper[0]                       = c;
-      v_upper[1]                       = s;
-      v_upper[2]                       = 0.;
-      v_lower[0]                       = -s;
-      v_lower[1]                       = c;
-      v_lower[2]                       = 0.;
-      v_zz[0]                          = 0.;
-      v_zz[1]                          = 0.;
-      v_zz[2]                          = 1.;
+      plane_pair_and_zz_into(upper, lower, zz, c, s, result);
       return result;
     }
 
