@@ -164,9 +164,10 @@ namespace scarp
     /// in-plane decompositions, then all the logarithms. Why: one
     /// predictor is a chain of dependent roots, divisions and libm calls
     /// too long for the processor to overlap with the next point's; by
-    /// stages the chains of neighbouring points run side by side (a plane
-    /// predictor 96 -> 70 ns in a loop over random points). The same
-    /// operations per point as hencky_trial_strain(): the same numbers.
+    /// stages the chains of neighbouring points run side by side (the
+    /// short refined cliff's constitutive update 126 -> 94 ns per point,
+    /// doc/performance/constitutive_update.md). The same operations per
+    /// point as hencky_trial_strain(): the same numbers.
     inline void
     hencky_trial_strains(const Tensor<2, 3>    *delta_F,
                          const double *const   *eps_e_n,
