@@ -183,11 +183,12 @@ namespace scarp
         r.plastic_strain = i_plastic >= 0 ? state[i_plastic] : 0.;
         r.damage_driver  = driver;
         r.stored_energy  = energy;
-        material.dissipated_energy(state.data(),
-                                   r.plastic_dissipation,
-                                   r.damage_dissipation);
-        r.external_work = work;
-        r.iterations    = iterations;
+        const DissipatedEnergy dissipated =
+          material.dissipated_energy(state.data());
+        r.plastic_dissipation = dissipated.plastic;
+        r.damage_dissipation  = dissipated.damage;
+        r.external_work       = work;
+        r.iterations          = iterations;
         records.push_back(r);
       };
       record(0., 0., 0., 0);

@@ -116,21 +116,15 @@ namespace scarp
             local_boxes.emplace_back(std::make_pair(lower, upper));
         }
       // Fully damaged points of materials with 'Nonlocal exclude fully
-      // damaged' are left out of both sums of the average.
-      std::vector<bool> is_source(damage_points.position.size());
-      for (std::size_t k = 0; k < is_source.size(); ++k)
-        {
-          const double *p = damage_points.properties[k];
-          is_source[k] =
-            materials[static_cast<unsigned int>(p[layout.material_id])]
-              ->is_nonlocal_source(p + layout.state);
-        }
+      // damaged' are left out of both sums of the average (damage_points'
+      // source, from G2P: the damage has not changed since; asking the
+      // materials here cost a cache miss per point on its record).
       averager->compute(local_boxes,
                         damage_points.position,
                         damage_points.volume,
                         damage_points.driver,
                         damage_points.receiver,
-                        is_source,
+                        damage_points.source,
                         damage_points.id,
                         nonlocal_driver);
       // Points whose driver approaches their damage threshold seed the

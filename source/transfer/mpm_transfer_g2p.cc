@@ -48,10 +48,10 @@ namespace scarp
       report.max_damage   = std::max(report.max_damage, d);
       const double V0     = p[layout.reference_volume];
       report.damaged_volume += d * V0;
-      double plastic = 0, damage = 0;
-      material.dissipated_energy(state, plastic, damage);
-      report.plastic_dissipation += V0 * plastic;
-      report.damage_dissipation += V0 * damage;
+      const materials::DissipatedEnergy dissipated =
+        material.dissipated_energy(state);
+      report.plastic_dissipation += V0 * dissipated.plastic;
+      report.damage_dissipation += V0 * dissipated.damage;
     }
 
 
@@ -105,11 +105,14 @@ namespace scarp
       // Gradient at a point, from its shape entries [e0, e1), of the nodal
       // velocities v taken relative to the point's own v_point (empty nodes
       // left out): the velocity gradient of the stress sweep and APIC's
-      // affine matrix.
+      // affine matrix. The lambdas here are inlined: called, their tensors
+      // came back through the stack (see cayley_increment below).
       const auto gradient_about = [&](const std::vector<Tensor<1, dim>> &v,
                                       const Tensor<1, dim> &v_point,
                                       const unsigned int    e0,
-                                      const unsigned int    e1) {
+                                      const unsigned int    e1)
+        __attribute__((always_inline))
+      {
         Tensor<2, dim> L;
         if (cell_has_empty)
           {
@@ -125,15 +128,21 @@ namespace scarp
       };
       // Velocity gradient of a point from its shape entries [e0, e1).
       const auto velocity_gradient = [&](const unsigned int e0,
-                                         const unsigned int e1) {
+                                         const unsigned int e1)
+        __attribute__((always_inline))
+      {
         Tensor<1, dim> v_point;
         for (unsigned int e = e0; e < e1; ++e)
           v_point += shape_value[e] * v_stress[shape_node[e]];
         return gradient_about(v_stress, v_point, e0, e1);
       };
       // Cayley (midpoint) increment: exactly a rotation when L is a spin,
-      // so rigid rotation creates no stress.
-      const auto cayley_increment = [dt](const Tensor<2, dim> &L) {
+      // so rigid rotation creates no stress. Inlined: as a call its result
+      // came back through the stack, stored in 8-byte pieces and read in
+      // 16-byte ones, a failed store forwarding per point (perf annotate).
+      const auto cayley_increment = [dt](const Tensor<2, dim> &L)
+        __attribute__((always_inline))
+      {
         const Tensor<2, dim> half_step = 0.5 * dt * L;
         return Tensor<2, dim>(invert(unit_symmetric_tensor<dim>() - half_step) *
                               (unit_symmetric_tensor<dim>() + half_step));
@@ -493,7 +502,9 @@ namespace scarp
               report.internal_work +=
                 0.5 * V0 * J * stress_power(sigma, b.strain_increment[k]);
               report.stored_energy += V0 * b.stored_energy[k];
-              if (!std::isfinite(sigma.norm()))
+              // The squared norm is finite exactly when the norm is; the
+              // root kept every point's write-back waiting on it.
+              if (!std::isfinite(scalar_product(sigma, sigma)))
                 {
                   report.n_not_finite += 1;
                   if (!report.has_offender)
@@ -526,6 +537,8 @@ namespace scarp
                   damage_points->driver.push_back(b.driver[k]);
                   damage_points->receiver.push_back(
                     inelastic.damage && material.damage_can_change(state));
+                  damage_points->source.push_back(
+                    material.is_nonlocal_source(state));
                   damage_points->id.push_back(b.id[k]);
                   damage_points->properties.push_back(p);
                 }

@@ -206,8 +206,8 @@ namespace scarp_chalk_test
         const double *p = particle.get_properties().data();
         const auto   &m =
           sim.material(static_cast<unsigned int>(p[layout.material_id]));
-        double plastic = 0, damage = 0;
-        m.dissipated_energy(p + layout.state, plastic, damage);
+        const auto   dissipated = m.dissipated_energy(p + layout.state);
+        const double plastic = dissipated.plastic, damage = dissipated.damage;
         for (unsigned int d = 0; d < dim; ++d)
           local.push_back(p[layout.reference_position + d]);
         for (unsigned int d = 0; d < dim; ++d)

@@ -241,13 +241,10 @@ namespace scarp
                     const double dt,
                     double      *state) const override;
 
-      void
-      dissipated_energy(const double *state,
-                        double       &plastic,
-                        double       &damage) const override
+      DissipatedEnergy
+      dissipated_energy(const double *state) const override
       {
-        plastic = state[plastic_dissipation];
-        damage  = state[damage_dissipation];
+        return {state[plastic_dissipation], state[damage_dissipation]};
       }
 
       NonlocalWeight

@@ -29,6 +29,18 @@ namespace scarp
     };
 
     /**
+     * @brief Cumulative energies dissipated per reference volume at a
+     * point (Material::dissipated_energy()).
+     */
+    struct DissipatedEnergy
+    {
+      /// By plasticity [J/m^3].
+      double plastic;
+      /// By damage [J/m^3].
+      double damage;
+    };
+
+    /**
      * @brief The points of one cell that share a material, handed to a
      * constitutive model in one call (no virtual call per point).
      *
@@ -209,14 +221,15 @@ namespace scarp
       }
 
       /// Cumulative energy dissipated per reference volume [J/m^3] by
-      /// plasticity and by damage at a point with this state.
-      virtual void
-      dissipated_energy(const double * /*state*/,
-                        double &plastic,
-                        double &damage) const
+      /// plasticity and by damage at a point with this state. A value (two
+      /// doubles come back in registers): written through references, the
+      /// pair was read back from the stack in one 16-byte load over two
+      /// 8-byte stores, a failed store forwarding per point (perf annotate
+      /// of the G2P write-back).
+      virtual DissipatedEnergy
+      dissipated_energy(const double * /*state*/) const
       {
-        plastic = 0.;
-        damage  = 0.;
+        return {0., 0.};
       }
     };
   } // namespace materials

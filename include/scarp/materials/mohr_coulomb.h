@@ -72,13 +72,10 @@ namespace scarp
         return true;
       }
 
-      void
-      dissipated_energy(const double *state,
-                        double       &plastic,
-                        double       &damage) const override
+      DissipatedEnergy
+      dissipated_energy(const double *state) const override
       {
-        plastic = state[plastic_dissipation];
-        damage  = 0.;
+        return {state[plastic_dissipation], 0.};
       }
 
       const MohrCoulombReturn &

@@ -45,10 +45,14 @@ namespace scarp
     template <int dim>
     struct DamagePoints
     {
-      std::vector<Point<dim>>            position;
-      std::vector<double>                volume;
-      std::vector<double>                driver;
-      std::vector<bool>                  receiver;
+      std::vector<Point<dim>> position;
+      std::vector<double>     volume;
+      std::vector<double>     driver;
+      std::vector<bool>       receiver;
+      /// Whether the point enters the sums of the average
+      /// (Material::is_nonlocal_source()), taken in G2P while the point's
+      /// record is in the cache.
+      std::vector<bool>                  source;
       std::vector<types::particle_index> id;
       /// Property arrays of the points (valid until particles are sorted).
       std::vector<double *> properties;
@@ -60,6 +64,7 @@ namespace scarp
         volume.clear();
         driver.clear();
         receiver.clear();
+        source.clear();
         id.clear();
       }
     };
