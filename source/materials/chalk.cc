@@ -354,15 +354,10 @@ namespace scarp
       SpectralDecomposition trial[hencky_chunk];
       for (unsigned int q = 0; q < batch.n; ++q)
         {
-          // The predictors of the next points, stage by stage.
-          if (q % hencky_chunk == 0)
-            hencky_trial_strains(batch.delta_F + q,
-                                 batch.state + q,
-                                 std::min(hencky_chunk, batch.n - q),
-                                 trial);
           double *const          state = batch.state[q];
           const double           d     = state[damage_variable];
-          SpectralDecomposition &e     = trial[q % hencky_chunk];
+          SpectralDecomposition &e     = hencky_trial_strain_by_chunks(
+            batch.delta_F, batch.state, batch.n, q, trial);
           // Effective (undamaged) principal Kirchhoff stress.
           std::array<double, 3> tau = elasticity.principal_stress(e.values);
           const std::array<double, 3> tau_trial = tau;

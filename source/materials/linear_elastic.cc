@@ -41,15 +41,10 @@ namespace scarp
       SpectralDecomposition trial[hencky_chunk];
       for (unsigned int q = 0; q < batch.n; ++q)
         {
-          // The predictors of the next points, stage by stage.
-          if (q % hencky_chunk == 0)
-            hencky_trial_strains(batch.delta_F + q,
-                                 batch.state + q,
-                                 std::min(hencky_chunk, batch.n - q),
-                                 trial);
           double *const                state = batch.state[q];
-          const SpectralDecomposition &e     = trial[q % hencky_chunk];
-          const std::array<double, 3>  tau =
+          const SpectralDecomposition &e     = hencky_trial_strain_by_chunks(
+            batch.delta_F, batch.state, batch.n, q, trial);
+          const std::array<double, 3> tau =
             elasticity.principal_stress(e.values);
           const double J = determinant(batch.F[q]);
           store_composed(e.values, e.vectors, state);

@@ -6,6 +6,7 @@
 
 #include <scarp/materials/spectral_decomposition.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace scarp
@@ -209,6 +210,26 @@ namespace scarp
                                    s[k],
                                    trial[k]);
         }
+    }
+
+    /// The trial decomposition of point q of a batch (delta_F[0, n),
+    /// eps_e_n[0, n)) out of @p trial, which holds q's chunk: at the
+    /// first point of each chunk the chunk's predictors are computed
+    /// (hencky_trial_strains()). Call it for q = 0, 1, ..., n - 1 in
+    /// order.
+    inline SpectralDecomposition &
+    hencky_trial_strain_by_chunks(const Tensor<2, 3>  *delta_F,
+                                  const double *const *eps_e_n,
+                                  const unsigned int   n,
+                                  const unsigned int   q,
+                                  SpectralDecomposition (&trial)[hencky_chunk])
+    {
+      if (q % hencky_chunk == 0)
+        hencky_trial_strains(delta_F + q,
+                             eps_e_n + q,
+                             std::min(hencky_chunk, n - q),
+                             trial);
+      return trial[q % hencky_chunk];
     }
   } // namespace materials
 } // namespace scarp
