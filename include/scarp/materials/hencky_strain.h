@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace scarp
 {
@@ -89,24 +90,12 @@ namespace scarp
         0.5 * std::log(upper), 0.5 * std::log(lower), zz, c, s);
     }
 
-    /**
-     * Elastic predictor in logarithmic (Hencky) strain, given 2 eps_e_n:
-     * b_e_trial = dF exp(2 eps_e_n) dF^T and eps_e_trial = 1/2 ln b_e_trial,
-     * returned in spectral form (principal logarithmic strains in
-     * descending order and their directions).
-     *
-     * Why this form: a rigid rotation dF = R gives b_e_trial = R b_e R^T,
-     * so the principal strains are unchanged and the directions rotate
-     * exactly; no objective stress rate is needed.
-     */
-    inline SpectralDecomposition
-    hencky_trial_strain_of(const Tensor<2, 3>          &delta_F,
-                           const SymmetricTensor<2, 3> &two_eps_e_n)
+    /// b_trial = dF exp(2 eps_e_n) dF^T for any dF and eps_e_n: the first
+    /// stage of hencky_trial_strain_of()'s general path.
+    inline SymmetricTensor<2, 3>
+    general_trial_b(const Tensor<2, 3>          &delta_F,
+                    const SymmetricTensor<2, 3> &two_eps_e_n)
     {
-      if (two_eps_e_n[0][2] == 0. && two_eps_e_n[1][2] == 0. &&
-          delta_F[0][2] == 0. && delta_F[1][2] == 0. && delta_F[2][0] == 0. &&
-          delta_F[2][1] == 0. && delta_F[2][2] == 1.)
-        return hencky_trial_strain_plane(delta_F, two_eps_e_n);
       const SymmetricTensor<2, 3> b_n = exp_symmetric(two_eps_e_n);
       SymmetricTensor<2, 3>       b_trial;
       if (b_n[0][2] == 0. && b_n[1][2] == 0. && delta_F[0][2] == 0. &&
@@ -138,6 +127,29 @@ namespace scarp
                 b_trial[i][j] = v;
               }
         }
+      return b_trial;
+    }
+
+    /**
+     * Elastic predictor in logarithmic (Hencky) strain, given 2 eps_e_n:
+     * b_e_trial = dF exp(2 eps_e_n) dF^T and eps_e_trial = 1/2 ln b_e_trial,
+     * returned in spectral form (principal logarithmic strains in
+     * descending order and their directions).
+     *
+     * Why this form: a rigid rotation dF = R gives b_e_trial = R b_e R^T,
+     * so the principal strains are unchanged and the directions rotate
+     * exactly; no objective stress rate is needed.
+     */
+    inline SpectralDecomposition
+    hencky_trial_strain_of(const Tensor<2, 3>          &delta_F,
+                           const SymmetricTensor<2, 3> &two_eps_e_n)
+    {
+      if (two_eps_e_n[0][2] == 0. && two_eps_e_n[1][2] == 0. &&
+          delta_F[0][2] == 0. && delta_F[1][2] == 0. && delta_F[2][0] == 0. &&
+          delta_F[2][1] == 0. && delta_F[2][2] == 1.)
+        return hencky_trial_strain_plane(delta_F, two_eps_e_n);
+      const SymmetricTensor<2, 3> b_trial =
+        general_trial_b(delta_F, two_eps_e_n);
       SpectralDecomposition s = spectral_decomposition(b_trial);
       for (double &v : s.values)
         v = 0.5 * std::log(v);
@@ -186,19 +198,28 @@ namespace scarp
                      dF[0][2] == 0. && dF[1][2] == 0. && dF[2][0] == 0. &&
                      dF[2][1] == 0. && dF[2][2] == 1.;
         }
+      SymmetricTensor<2, 3> b_general[hencky_chunk];
       for (unsigned int k = 0; k < n; ++k)
         if (plane[k])
           plane_trial_b(delta_F[k], two_eps[k], xx[k], yy[k], xy[k]);
+        else
+          b_general[k] = general_trial_b(delta_F[k], two_eps[k]);
       double upper[hencky_chunk], lower[hencky_chunk], c[hencky_chunk],
         s[hencky_chunk];
       for (unsigned int k = 0; k < n; ++k)
-        if (plane[k] && xy[k] != 0.)
+        if (!plane[k])
+          // Built in place (a prvalue initialises the object; assigned,
+          // it would go through a temporary on the stack).
+          new (&trial[k])
+            SpectralDecomposition(spectral_decomposition(b_general[k]));
+        else if (xy[k] != 0.)
           plane_trial_pair(xx[k], yy[k], xy[k], upper[k], lower[k], c[k], s[k]);
       for (unsigned int k = 0; k < n; ++k)
         {
           const double zz = 0.5 * two_eps[k][2][2];
           if (!plane[k])
-            trial[k] = hencky_trial_strain_of(delta_F[k], two_eps[k]);
+            for (double &v : trial[k].values)
+              v = 0.5 * std::log(v);
           else if (xy[k] == 0.)
             trial[k] = sorted_diagonal(
               {{0.5 * std::log(xx[k]), 0.5 * std::log(yy[k]), zz}});
