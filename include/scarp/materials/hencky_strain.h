@@ -14,6 +14,17 @@ namespace scarp
 {
   namespace materials
   {
+    /// Whether a step is plane strain for the predictor: 2 eps_e_n and dF
+    /// without xz, yz, zx, zy entries, and dF_zz = 1.
+    inline bool
+    is_plane_strain_step(const Tensor<2, 3>          &delta_F,
+                         const SymmetricTensor<2, 3> &two_eps_e_n)
+    {
+      return two_eps_e_n[0][2] == 0. && two_eps_e_n[1][2] == 0. &&
+             delta_F[0][2] == 0. && delta_F[1][2] == 0. &&
+             delta_F[2][0] == 0. && delta_F[2][1] == 0. && delta_F[2][2] == 1.;
+    }
+
     /// b_trial = dF exp(2 eps_e_n) dF^T of plane strain, its in-plane
     /// block (xx, yy, xy): the first stage of hencky_trial_strain_plane().
     inline void
@@ -144,9 +155,7 @@ namespace scarp
     hencky_trial_strain_of(const Tensor<2, 3>          &delta_F,
                            const SymmetricTensor<2, 3> &two_eps_e_n)
     {
-      if (two_eps_e_n[0][2] == 0. && two_eps_e_n[1][2] == 0. &&
-          delta_F[0][2] == 0. && delta_F[1][2] == 0. && delta_F[2][0] == 0. &&
-          delta_F[2][1] == 0. && delta_F[2][2] == 1.)
+      if (is_plane_strain_step(delta_F, two_eps_e_n))
         return hencky_trial_strain_plane(delta_F, two_eps_e_n);
       const SymmetricTensor<2, 3> b_trial =
         general_trial_b(delta_F, two_eps_e_n);
@@ -173,8 +182,9 @@ namespace scarp
 
     /// The Hencky predictors of n <= hencky_chunk points (eps_e_n[k] as in
     /// hencky_trial_strain()) into trial[0, n), stage by stage over the
-    /// points of plane strain: the exponentials of all, then all the
-    /// in-plane decompositions, then all the logarithms. Why: one
+    /// points: the exponentials and products of all, then all the
+    /// decompositions (in-plane, or 3x3 for points that are not plane
+    /// strain), then all the logarithms. Why: one
     /// predictor is a chain of dependent roots, divisions and libm calls
     /// too long for the processor to overlap with the next point's; by
     /// stages the chains of neighbouring points run side by side (the
@@ -192,11 +202,8 @@ namespace scarp
       double xx[hencky_chunk], yy[hencky_chunk], xy[hencky_chunk];
       for (unsigned int k = 0; k < n; ++k)
         {
-          two_eps[k]     = load_symmetric_scaled(eps_e_n[k], 2.);
-          const auto &dF = delta_F[k];
-          plane[k]       = two_eps[k][0][2] == 0. && two_eps[k][1][2] == 0. &&
-                     dF[0][2] == 0. && dF[1][2] == 0. && dF[2][0] == 0. &&
-                     dF[2][1] == 0. && dF[2][2] == 1.;
+          two_eps[k] = load_symmetric_scaled(eps_e_n[k], 2.);
+          plane[k]   = is_plane_strain_step(delta_F[k], two_eps[k]);
         }
       SymmetricTensor<2, 3> b_general[hencky_chunk];
       for (unsigned int k = 0; k < n; ++k)
